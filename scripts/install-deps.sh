@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package dustlift needs (build, tests, renders, figures).
+# See ../shared/toolchain-notes.md: libvtk9-dev conflicts with python3-paraview,
+# so C++ builds against ParaView's bundled VTK (paraview-dev + libglew-dev).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update
+$SUDO apt-get install -y --no-install-recommends \
+  build-essential cmake ninja-build ccache pkg-config git \
+  paraview python3-paraview paraview-dev libglew-dev \
+  libhdf5-dev libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev \
+  libtomlplusplus-dev libcli11-dev libfmt-dev zlib1g-dev \
+  xvfb xauth python3-numpy python3-matplotlib python3-h5py

@@ -1,0 +1,91 @@
+#pragma once
+// Rectilinear, optionally stretched 2-D grid with ghost layers.
+// The paper's mesh (section 3.1): uniform 250 um cells in the main region,
+// geometric stretching upstream (x < 0) and above y = 32 mm.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace dustlift {
+
+/// How one axis is built. Uniform spacing `cell_size` on [uniform_start, uniform_end];
+/// `cells_below` cells stretched geometrically on [start, uniform_start] and
+/// `cells_above` on [uniform_end, end], the first stretched cell as wide as `cell_size`.
+/// Simplest use: start/end/cells with no stretching.
+struct AxisSpec {
+  double start = 0.0;          ///< m
+  double end = 1.0;            ///< m
+  std::size_t cells = 100;     ///< used when the axis is uniform (cell_size == 0)
+  double cell_size = 0.0;      ///< m; > 0 selects the uniform-core + stretched-ends form
+  double uniform_start = 0.0;  ///< m
+  double uniform_end = 0.0;    ///< m
+  std::size_t cells_below = 0;
+  std::size_t cells_above = 0;
+};
+
+/// Node coordinates of one axis (n_cells + 1 nodes), built from an AxisSpec.
+/// Throws std::invalid_argument with a readable message on an impossible spec.
+std::vector<double> build_axis_nodes(const AxisSpec& spec);
+
+/// Growth ratio r of a geometric progression of `cells` cells whose first cell is `first`
+/// and whose total length is `length` (r = 1 when length == cells * first).
+double geometric_growth_ratio(double first, double length, std::size_t cells);
+
+/// One axis with ghost cells: interior cells 0..n-1, ghosts -ng..-1 and n..n+ng-1.
+/// Ghost widths mirror the adjacent interior widths.
+class Axis {
+ public:
+  Axis() = default;
+  Axis(std::vector<double> interior_nodes, int ghosts);
+
+  int cells() const { return n_; }
+  int ghosts() const { return ng_; }
+  /// Node coordinate of face i (i in [-ng, n+ng]); face i is the left face of cell i.
+  double face(int i) const { return faces_[static_cast<std::size_t>(i + ng_)]; }
+  double center(int i) const { return centers_[static_cast<std::size_t>(i + ng_)]; }
+  double width(int i) const { return widths_[static_cast<std::size_t>(i + ng_)]; }
+  double start() const { return face(0); }
+  double end() const { return face(n_); }
+  double min_width() const;
+  /// Index of the interior cell holding coordinate s (clamped to [0, n-1]).
+  int locate(double s) const;
+  const std::vector<double>& interior_faces() const { return interior_faces_; }
+
+ private:
+  int n_ = 0;
+  int ng_ = 0;
+  std::vector<double> faces_, centers_, widths_, interior_faces_;
+};
+
+/// The 2-D grid: two axes and a cell indexing with ghosts (row-major, x fastest).
+class Grid2D {
+ public:
+  Grid2D() = default;
+  Grid2D(Axis x, Axis y);
+  Grid2D(const AxisSpec& x, const AxisSpec& y, int ghosts);
+
+  const Axis& x() const { return x_; }
+  const Axis& y() const { return y_; }
+  int nx() const { return x_.cells(); }
+  int ny() const { return y_.cells(); }
+  int ghosts() const { return x_.ghosts(); }
+  /// Row stride and total size including ghosts.
+  int stride() const { return nx() + 2 * ghosts(); }
+  std::size_t size_with_ghosts() const {
+    return static_cast<std::size_t>(stride()) * static_cast<std::size_t>(ny() + 2 * ghosts());
+  }
+  std::size_t interior_cells() const {
+    return static_cast<std::size_t>(nx()) * static_cast<std::size_t>(ny());
+  }
+  /// Linear index of cell (i, j), ghosts allowed.
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>((j + ghosts()) * stride() + (i + ghosts()));
+  }
+  /// Cell area (m^2), i.e. the cell volume per metre of depth.
+  double area(int i, int j) const { return x_.width(i) * y_.width(j); }
+
+ private:
+  Axis x_, y_;
+};
+
+}  // namespace dustlift

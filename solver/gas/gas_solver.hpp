@@ -1,0 +1,65 @@
+#pragma once
+// Compressible Navier-Stokes solver with porosity (paper eqs. 1-4, 17):
+// conservative variables (a rho, a rho u, a rho v, a E) with a = alpha_g, SLAU2 fluxes
+// fed by MUSCL reconstruction of primitives, 2nd-order central viscous terms, SSP-RK3.
+//
+// Contract used by sim/, coupling/ and insitu/ (keep it stable):
+//  - construct from a grid (ghosts >= 2) and a GasConfig; initialize() from an InitialCondition;
+//  - stable_dt() gives eq. (17) with the scheme's CFL (and a viscous limit when viscous);
+//  - step(dt) advances one SSP-RK3 step and refreshes the primitive fields;
+//  - primitives() exposes read-only rho, u, v, p, T, alpha_g on the interior+ghost layout.
+#include <array>
+#include <memory>
+
+#include "solver/core/field.hpp"
+#include "solver/core/grid.hpp"
+#include "solver/gas/gas_config.hpp"
+
+namespace dustlift {
+
+/// Read-only primitive gas fields (interior cells valid; ghosts as last filled).
+struct GasPrimitives {
+  const Field2D* rho = nullptr;
+  const Field2D* u = nullptr;
+  const Field2D* v = nullptr;
+  const Field2D* p = nullptr;
+  const Field2D* T = nullptr;
+  const Field2D* alpha_g = nullptr;  ///< porosity, 1 where no particles
+};
+
+/// Integrals over the interior: mass (kg/m), x/y momentum, total energy (J/m).
+struct GasTotals {
+  double mass = 0, momentum_x = 0, momentum_y = 0, energy = 0;
+};
+
+class GasSolver {
+ public:
+  GasSolver(const Grid2D& grid, const GasConfig& config);
+  ~GasSolver();
+  GasSolver(GasSolver&&) noexcept;
+  GasSolver& operator=(GasSolver&&) noexcept;
+
+  void initialize(const InitialCondition& ic);
+  double stable_dt() const;
+  void step(double dt);
+
+  const Grid2D& grid() const;
+  const GasConfig& config() const;
+  GasPrimitives primitives() const;
+  GasTotals totals() const;
+
+  /// Sound speed at cell (i, j) of the current state (for Mach number output).
+  double sound_speed(int i, int j) const;
+
+  /// Conservative state access (variable k = 0..3 for a rho, a rho u, a rho v, a E) for
+  /// checkpoints and tests. After writing, call refresh_primitives().
+  Field2D& conserved(int k);
+  const Field2D& conserved(int k) const;
+  void refresh_primitives();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dustlift

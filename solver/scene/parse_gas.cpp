@@ -1,0 +1,108 @@
+// [gas], [boundary], [initial]: the gas solver's sections.
+#include "solver/scene/parse_sections.hpp"
+
+namespace dustlift::scene_detail {
+
+PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
+  PrimitiveState s;
+  s.p = t.required_number("p", Range::positive());
+  s.u = t.number("u", 0.0);
+  s.v = t.number("v", 0.0);
+  const bool has_rho = t.has("rho"), has_T = t.has("T");
+  if (has_rho == has_T) t.fail(has_rho ? "T" : "rho", "give exactly one of rho or T");
+  if (has_rho) {
+    s.rho = t.required_number("rho", Range::positive());
+  } else {
+    // p = rho R T (eq. 4) holds for both thermodynamic models.
+    const double T = t.required_number("T", Range::positive());
+    s.rho = s.p / (thermo.gas_constant * T);
+  }
+  t.finish();
+  return s;
+}
+
+void parse_gas(TableReader t, GasConfig& gas) {
+  const auto thermo = t.choice("thermo", "thermally_perfect", {"thermally_perfect", "calorically_perfect"});
+  gas.thermo.model = thermo == "thermally_perfect" ? ThermoModel::ThermallyPerfect
+                                                   : ThermoModel::CaloricallyPerfect;
+  gas.thermo.gamma = t.number("gamma", 1.4, Range::open(1.0, 5.0 / 3.0 + 1e-12));
+  gas.thermo.gas_constant = t.number("gas_constant", 288.190, Range::positive());
+  if (gas.thermo.model == ThermoModel::ThermallyPerfect && t.has("gamma")) {
+    t.fail("gamma", "only used with thermo = \"calorically_perfect\" (thermally perfect air takes cp(T) from NASA polynomials)");
+  }
+
+  TableReader tr = t.table("transport");
+  const auto model = tr.choice("model", "gordon_wilke", {"inviscid", "constant", "sutherland", "gordon_wilke"});
+  gas.transport.model = model == "inviscid"     ? TransportModel::Inviscid
+                        : model == "constant"   ? TransportModel::Constant
+                        : model == "sutherland" ? TransportModel::Sutherland
+                                                : TransportModel::GordonWilke;
+  gas.transport.viscosity = tr.number("viscosity", gas.transport.viscosity, Range::positive());
+  gas.transport.prandtl = tr.number("prandtl", gas.transport.prandtl, Range::positive());
+  gas.transport.sutherland_mu_ref = tr.number("sutherland_mu_ref", gas.transport.sutherland_mu_ref, Range::positive());
+  gas.transport.sutherland_t_ref = tr.number("sutherland_t_ref", gas.transport.sutherland_t_ref, Range::positive());
+  gas.transport.sutherland_s = tr.number("sutherland_s", gas.transport.sutherland_s, Range::non_negative());
+  tr.finish();
+
+  TableReader sc = t.table("scheme");
+  const auto rec = sc.choice("reconstruction", "muscl3", {"first_order", "muscl2", "muscl3"});
+  gas.scheme.reconstruction = rec == "first_order" ? Reconstruction::FirstOrder
+                              : rec == "muscl2"    ? Reconstruction::Muscl2
+                                                   : Reconstruction::Muscl3;
+  const auto lim = sc.choice("limiter", "minmod", {"minmod", "van_albada"});
+  gas.scheme.limiter = lim == "minmod" ? Limiter::Minmod : Limiter::VanAlbada;
+  gas.scheme.minmod_b = sc.number("minmod_b", gas.scheme.minmod_b, Range::closed(1.0, 4.0));
+  gas.scheme.cfl = sc.number("cfl", gas.scheme.cfl, Range::open_closed(0.0, 1.0));
+  sc.finish();
+  t.finish();
+}
+
+static BoundaryKind boundary_kind(TableReader& t, std::string_view side, const char* fallback) {
+  const auto k = t.choice(side, fallback, {"slip_wall", "no_slip_wall", "inflow", "outflow", "periodic"});
+  if (k == "slip_wall") return BoundaryKind::SlipWall;
+  if (k == "no_slip_wall") return BoundaryKind::NoSlipWall;
+  if (k == "inflow") return BoundaryKind::Inflow;
+  if (k == "outflow") return BoundaryKind::Outflow;
+  return BoundaryKind::Periodic;
+}
+
+void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo) {
+  b.left = boundary_kind(t, "left", "outflow");
+  b.right = boundary_kind(t, "right", "outflow");
+  b.bottom = boundary_kind(t, "bottom", "slip_wall");
+  b.top = boundary_kind(t, "top", "slip_wall");
+  if ((b.left == BoundaryKind::Periodic) != (b.right == BoundaryKind::Periodic)) {
+    t.fail(b.left == BoundaryKind::Periodic ? "right" : "left", "periodic boundaries come in pairs (left and right)");
+  }
+  if ((b.bottom == BoundaryKind::Periodic) != (b.top == BoundaryKind::Periodic)) {
+    t.fail(b.bottom == BoundaryKind::Periodic ? "top" : "bottom", "periodic boundaries come in pairs (bottom and top)");
+  }
+  if (t.has("inflow")) {
+    b.inflow = parse_state(t.table("inflow"), thermo);
+    b.inflow_given = true;
+  }
+  t.finish();
+}
+
+void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo) {
+  const auto kind = t.choice("kind", "uniform", {"uniform", "riemann", "shock"});
+  if (kind == "uniform") {
+    ic.kind = InitialCondition::Kind::Uniform;
+    ic.state = parse_state(t.table("state", true), thermo);
+  } else if (kind == "riemann") {
+    ic.kind = InitialCondition::Kind::Riemann;
+    ic.left = parse_state(t.table("left", true), thermo);
+    ic.right = parse_state(t.table("right", true), thermo);
+    ic.position = t.required_number("position");
+    ic.axis = t.choice("axis", "x", {"x", "y"})[0];
+  } else {
+    ic.kind = InitialCondition::Kind::Shock;
+    ic.state = parse_state(t.table("state", true), thermo);
+    ic.mach = t.required_number("mach", Range::open(1.0, 50.0));
+    ic.position = t.required_number("position");
+    ic.axis = t.choice("axis", "x", {"x", "y"})[0];
+  }
+  t.finish();
+}
+
+}  // namespace dustlift::scene_detail

@@ -1,0 +1,22 @@
+#pragma once
+// Internal: one parse function per scene section, each in its own file.
+#include "solver/scene/scene.hpp"
+#include "solver/scene/table_reader.hpp"
+
+namespace dustlift::scene_detail {
+
+void parse_run(TableReader t, RunConfig& run);
+void parse_grid(TableReader t, GridConfig& grid);
+void parse_gas(TableReader t, GasConfig& gas);
+void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo);
+void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo);
+void parse_particles(TableReader t, DemConfig& dem);
+void parse_output(TableReader t, OutputConfig& out);
+
+/// A gas state table: p and exactly one of rho or T, optional u, v.
+PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo);
+
+/// Checks that need several sections (e.g. periodic boundaries come in pairs).
+void check_cross_section(const Scene& s);
+
+}  // namespace dustlift::scene_detail

@@ -1,0 +1,50 @@
+#pragma once
+// The single source of configuration: a typed, validated scene in SI units.
+// Every default lives in the parse functions (solver/scene/parse_*.cpp) and is
+// written back into `resolved_toml`, which a run stores in its output folder.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/core/grid.hpp"
+#include "solver/dem/dem_config.hpp"
+#include "solver/gas/gas_config.hpp"
+
+namespace dustlift {
+
+struct RunConfig {
+  std::string name = "run";
+  double end_time = 1e-3;          ///< s, simulated
+  long long max_steps = 0;         ///< 0: unlimited
+  double progress_interval = 2.0;  ///< s of wall time between progress lines
+};
+
+struct OutputConfig {
+  double interval = 0.0;  ///< s of simulated time between VTK outputs; 0: initial + final only
+  bool vtk = true;        ///< write gas.pvd / parcels.pvd
+};
+
+struct GridConfig {
+  AxisSpec x, y;
+};
+
+struct Scene {
+  std::string source_file;
+  RunConfig run;
+  GridConfig grid;
+  GasConfig gas;
+  InitialCondition initial;
+  DemConfig particles;
+  OutputConfig output;
+  std::string resolved_toml;  ///< the whole scene with every default filled in
+};
+
+/// Reads, overrides (`key.path=value`, TOML value syntax; bare words are strings) and
+/// validates a scene. Throws SceneError naming file, line and key on any problem.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// Same, from TOML text (`name` stands in for the file in messages).
+Scene parse_scene(const std::string& text, const std::string& name,
+                  const std::vector<std::string>& overrides = {});
+
+}  // namespace dustlift

@@ -1,0 +1,251 @@
+#include "solver/scene/table_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace dustlift {
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  if (min_exclusive ? !(v > min) : !(v >= min)) return false;
+  if (max_exclusive ? !(v < max) : !(v <= max)) return false;
+  return true;
+}
+
+std::string Range::describe() const {
+  std::ostringstream s;
+  s.precision(10);
+  const bool lo = std::isfinite(min), hi = std::isfinite(max);
+  if (lo && hi) {
+    s << "in " << (min_exclusive ? "(" : "[") << min << ", " << max << (max_exclusive ? ")" : "]");
+  } else if (lo) {
+    s << (min_exclusive ? "> " : ">= ") << min;
+  } else if (hi) {
+    s << (max_exclusive ? "< " : "<= ") << max;
+  } else {
+    s << "finite";
+  }
+  return s.str();
+}
+
+TableReader::TableReader(const toml::table* table, std::string prefix, std::string file,
+                         toml::table* out)
+    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)), out_(out) {}
+
+std::string TableReader::full_key(std::string_view key) const {
+  return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+}
+
+std::string TableReader::where(const toml::node* n) const {
+  std::ostringstream s;
+  s << file_;
+  if (n != nullptr && n->source().begin.line > 0) {
+    s << ":" << n->source().begin.line;
+  } else if (table_ != nullptr && table_->source().begin.line > 0) {
+    s << ":" << table_->source().begin.line;
+  }
+  return s.str();
+}
+
+void TableReader::fail(std::string_view key, const std::string& what) const {
+  throw SceneError(where(node(key)) + ": key '" + full_key(key) + "': " + what);
+}
+
+const toml::node* TableReader::node(std::string_view key) const {
+  return table_ == nullptr ? nullptr : table_->get(key);
+}
+
+bool TableReader::has(std::string_view key) const { return node(key) != nullptr; }
+
+void TableReader::mark(std::string_view key) {
+  if (std::find(read_.begin(), read_.end(), key) == read_.end()) read_.emplace_back(key);
+}
+
+static const char* type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+std::optional<double> TableReader::optional_number(std::string_view key, Range range) {
+  mark(key);
+  const toml::node* n = node(key);
+  if (n == nullptr) return std::nullopt;
+  double v = 0.0;
+  if (auto f = n->value_exact<double>()) {
+    v = *f;
+  } else if (auto i = n->value_exact<int64_t>()) {
+    v = static_cast<double>(*i);
+  } else {
+    fail(key, std::string("expected a number, got ") + type_name(*n));
+  }
+  if (!range.contains(v)) {
+    std::ostringstream s;
+    s.precision(10);
+    s << "value " << v << " out of range: must be " << range.describe();
+    fail(key, s.str());
+  }
+  if (out_ != nullptr) out_->insert_or_assign(key, v);
+  return v;
+}
+
+double TableReader::number(std::string_view key, double fallback, Range range) {
+  auto v = optional_number(key, range);
+  if (!v) {
+    if (out_ != nullptr) out_->insert_or_assign(key, fallback);
+    return fallback;
+  }
+  return *v;
+}
+
+double TableReader::required_number(std::string_view key, Range range) {
+  auto v = optional_number(key, range);
+  if (!v) fail(key, "missing required number (" + range.describe() + ")");
+  return *v;
+}
+
+long long TableReader::integer(std::string_view key, long long fallback, long long min,
+                               long long max) {
+  mark(key);
+  const toml::node* n = node(key);
+  long long v = fallback;
+  if (n != nullptr) {
+    auto i = n->value_exact<int64_t>();
+    if (!i) fail(key, std::string("expected an integer, got ") + type_name(*n));
+    v = *i;
+    if (v < min || v > max) {
+      fail(key, "value " + std::to_string(v) + " out of range: must be in [" +
+                    std::to_string(min) + ", " + std::to_string(max) + "]");
+    }
+  }
+  if (out_ != nullptr) out_->insert_or_assign(key, static_cast<int64_t>(v));
+  return v;
+}
+
+bool TableReader::boolean(std::string_view key, bool fallback) {
+  mark(key);
+  const toml::node* n = node(key);
+  bool v = fallback;
+  if (n != nullptr) {
+    auto b = n->value_exact<bool>();
+    if (!b) fail(key, std::string("expected true or false, got ") + type_name(*n));
+    v = *b;
+  }
+  if (out_ != nullptr) out_->insert_or_assign(key, v);
+  return v;
+}
+
+std::string TableReader::string(std::string_view key, std::string fallback) {
+  mark(key);
+  const toml::node* n = node(key);
+  std::string v = std::move(fallback);
+  if (n != nullptr) {
+    auto s = n->value_exact<std::string>();
+    if (!s) fail(key, std::string("expected a string, got ") + type_name(*n));
+    v = *s;
+  }
+  if (out_ != nullptr) out_->insert_or_assign(key, v);
+  return v;
+}
+
+std::string TableReader::choice(std::string_view key, std::string fallback,
+                                std::initializer_list<std::string_view> allowed) {
+  std::string v = string(key, std::move(fallback));
+  if (std::find(allowed.begin(), allowed.end(), v) == allowed.end()) {
+    std::string list;
+    for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
+    fail(key, "\"" + v + "\" is not one of " + list);
+  }
+  return v;
+}
+
+std::vector<double> TableReader::number_list(std::string_view key, std::vector<double> fallback,
+                                             Range range) {
+  mark(key);
+  const toml::node* n = node(key);
+  std::vector<double> v = std::move(fallback);
+  if (n != nullptr) {
+    const toml::array* arr = n->as_array();
+    if (arr == nullptr) fail(key, std::string("expected an array of numbers, got ") + type_name(*n));
+    v.clear();
+    for (const auto& e : *arr) {
+      double x = 0.0;
+      if (auto f = e.value_exact<double>()) {
+        x = *f;
+      } else if (auto i = e.value_exact<int64_t>()) {
+        x = static_cast<double>(*i);
+      } else {
+        fail(key, std::string("expected an array of numbers, found ") + type_name(e));
+      }
+      if (!range.contains(x)) {
+        std::ostringstream s;
+        s << "element " << x << " out of range: must be " << range.describe();
+        fail(key, s.str());
+      }
+      v.push_back(x);
+    }
+  }
+  if (out_ != nullptr) {
+    toml::array a;
+    for (double x : v) a.push_back(x);
+    out_->insert_or_assign(key, std::move(a));
+  }
+  return v;
+}
+
+TableReader TableReader::table(std::string_view key, bool required) {
+  mark(key);
+  const toml::node* n = node(key);
+  if (n == nullptr && required) fail(key, "missing required table");
+  if (n != nullptr && !n->is_table()) fail(key, std::string("expected a table, got ") + type_name(*n));
+  toml::table* sub_out = nullptr;
+  if (out_ != nullptr) {
+    auto [it, inserted] = out_->insert(key, toml::table{});
+    (void)inserted;
+    sub_out = it->second.as_table();
+  }
+  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, sub_out);
+}
+
+std::vector<TableReader> TableReader::table_array(std::string_view key) {
+  mark(key);
+  std::vector<TableReader> result;
+  const toml::node* n = node(key);
+  if (n == nullptr) return result;
+  const toml::array* arr = n->as_array();
+  if (arr == nullptr || !arr->is_array_of_tables()) fail(key, "expected an array of tables ([[...]])");
+  toml::array* out_arr = nullptr;
+  if (out_ != nullptr) {
+    auto [it, inserted] = out_->insert_or_assign(key, toml::array{});
+    (void)inserted;
+    out_arr = it->second.as_array();
+  }
+  for (std::size_t k = 0; k < arr->size(); ++k) {
+    toml::table* sub_out = nullptr;
+    if (out_arr != nullptr) {
+      out_arr->push_back(toml::table{});
+      sub_out = out_arr->back().as_table();
+    }
+    result.emplace_back((*arr)[k].as_table(), full_key(key) + "[" + std::to_string(k) + "]", file_,
+                        sub_out);
+  }
+  return result;
+}
+
+void TableReader::finish() const {
+  if (table_ == nullptr) return;
+  for (const auto& [k, v] : *table_) {
+    if (std::find(read_.begin(), read_.end(), k.str()) == read_.end()) {
+      throw SceneError(where(&v) + ": key '" + full_key(k.str()) + "': unknown key");
+    }
+  }
+}
+
+}  // namespace dustlift
