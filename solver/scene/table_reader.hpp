@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include <toml++/toml.hpp>
+#include <toml++/toml.h>
 
 namespace dustlift {
 

@@ -1,0 +1,146 @@
+// dustlift command line: `run` a scene into an output folder, or print its `info`.
+// Exit codes: 0 success, 2 bad input (scene, options, output folder), 3 numerical failure.
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/core.h>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "insitu/outputs.hpp"
+#include "solver/core/errors.hpp"
+#include "solver/scene/table_reader.hpp"
+#include "solver/sim/simulation.hpp"
+
+namespace fs = std::filesystem;
+using namespace dustlift;
+
+namespace {
+
+constexpr int kExitBadInput = 2;
+constexpr int kExitNumerical = 3;
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s)) return "?";
+  const long long t = std::llround(s);
+  if (t >= 3600) return fmt::format("{}h{:02}m", t / 3600, (t / 60) % 60);
+  if (t >= 60) return fmt::format("{}m{:02}s", t / 60, t % 60);
+  return fmt::format("{}s", t);
+}
+
+/// Creates the output folder and proves it is writable before anything else is written.
+void prepare_output_dir(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw SceneError("output folder '" + dir.string() + "': cannot create: " + ec.message());
+  const fs::path probe = dir / ".dustlift-write-probe";
+  {
+    std::ofstream f(probe);
+    if (!f || !(f << "x")) throw SceneError("output folder '" + dir.string() + "': not writable");
+  }
+  fs::remove(probe, ec);
+}
+
+/// Writes to the terminal and to the run's log file.
+class Log {
+ public:
+  void open(const fs::path& p) { file_.open(p); }
+  void line(const std::string& s) {
+    std::cerr << s << "\n";
+    if (file_) file_ << s << "\n" << std::flush;
+  }
+
+ private:
+  std::ofstream file_;
+};
+
+void print_info(const Scene& scene, const Simulation& sim) {
+  const Grid2D& g = sim.grid();
+  fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
+  fmt::print("effects on:\n");
+  for (const auto& e : sim.enabled_effects()) fmt::print("  - {}\n", e);
+  fmt::print("grid: {} x {} cells = {} cells; x in [{:g}, {:g}] m, y in [{:g}, {:g}] m; "
+             "min dx = {:g} m, min dy = {:g} m\n",
+             g.nx(), g.ny(), g.interior_cells(), g.x().start(), g.x().end(), g.y().start(),
+             g.y().end(), g.x().min_width(), g.y().min_width());
+  fmt::print("parcels: {}\n", scene.particles.enabled ? "enabled" : "0 (gas only)");
+  const double dt0 = sim.gas().stable_dt();
+  fmt::print("time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f}\n",
+             scene.run.end_time, scene.gas.scheme.cfl, dt0, std::ceil(scene.run.end_time / dt0));
+  fmt::print("\n{}", scene.resolved_toml);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dustlift: 2-D compressible CFD-DEM solver for shock-induced dust lifting"};
+  app.require_subcommand(1);
+
+  std::string scene_path, out_dir;
+  std::vector<std::string> overrides;
+  int threads = 0;
+
+  auto* run = app.add_subcommand("run", "run a scene and write its output folder");
+  run->add_option("scene", scene_path, "scene file (TOML)")->required();
+  run->add_option("--out,-o", out_dir, "output folder (default: out/<run.name>)");
+  run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)");
+  run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+
+  auto* info = app.add_subcommand("info", "print the resolved scene, enabled effects, grid and step estimate");
+  info->add_option("scene", scene_path, "scene file (TOML)")->required();
+  info->add_option("--set", overrides, "override a scene key (repeatable)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  if (threads > 0) omp_set_num_threads(threads);
+
+  Log log;
+  try {
+    const Scene scene = load_scene(scene_path, overrides);
+    if (info->parsed()) {
+      Simulation sim(scene);
+      print_info(scene, sim);
+      return 0;
+    }
+    if (out_dir.empty()) out_dir = (fs::path("out") / scene.run.name).string();
+    Simulation sim(scene);  // validates the whole setup before anything is written
+    prepare_output_dir(out_dir);
+    {
+      std::ofstream f(fs::path(out_dir) / "scene.resolved.toml");
+      f << scene.resolved_toml;
+    }
+    log.open(fs::path(out_dir) / "run.log");
+    log.line(fmt::format("dustlift run {} -> {} ({} threads)", scene_path, out_dir, omp_get_max_threads()));
+    for (const auto& e : sim.enabled_effects()) log.line("  " + e);
+    for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
+    sim.set_progress_callback([&](const Progress& p) {
+      log.line(fmt::format("t = {:.4e} s ({:5.1f}%)  step {}  dt = {:.3e} s  wall {}  ETA {}", p.time,
+                           100.0 * p.time / p.end_time, p.step, p.dt, format_duration(p.wall_seconds),
+                           format_duration(p.eta_seconds)));
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.run(out_dir);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(), sim.step(), wall));
+    return 0;
+  } catch (const SceneError& e) {
+    std::cerr << "dustlift: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "dustlift: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const NumericalFailure& e) {
+    log.line(std::string("dustlift: numerical failure: ") + e.what());
+    return kExitNumerical;
+  }
+}

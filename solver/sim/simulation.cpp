@@ -1,0 +1,117 @@
+#include "solver/sim/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "solver/core/errors.hpp"
+
+namespace dustlift {
+
+Simulation::Simulation(const Scene& scene)
+    : scene_(scene), grid_(scene.grid.x, scene.grid.y, kGhostLayers) {
+  gas_ = std::make_unique<GasSolver>(grid_, scene_.gas);
+  gas_->initialize(scene_.initial);
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::add_observer(std::unique_ptr<Observer> observer) {
+  observers_.push_back(std::move(observer));
+}
+
+void Simulation::set_progress_callback(std::function<void(const Progress&)> callback) {
+  progress_ = std::move(callback);
+}
+
+StateView Simulation::view(const std::string& output_dir) const {
+  StateView v;
+  v.scene = &scene_;
+  v.grid = &grid_;
+  v.gas = gas_.get();
+  v.primitives = gas_->primitives();
+  v.parcels = nullptr;
+  v.time = time_;
+  v.step = step_;
+  v.output_dir = output_dir;
+  return v;
+}
+
+std::vector<std::string> Simulation::enabled_effects() const {
+  std::vector<std::string> e;
+  const auto& g = scene_.gas;
+  e.push_back(g.thermo.model == ThermoModel::ThermallyPerfect
+                  ? "gas: thermally perfect air (NASA polynomials, O2:N2 = 1:3.76)"
+                  : "gas: calorically perfect (gamma = " + std::to_string(g.thermo.gamma) + ")");
+  switch (g.transport.model) {
+    case TransportModel::Inviscid: e.push_back("viscosity: off (Euler)"); break;
+    case TransportModel::Constant: e.push_back("viscosity + heat conduction: constant mu, Pr"); break;
+    case TransportModel::Sutherland: e.push_back("viscosity + heat conduction: Sutherland"); break;
+    case TransportModel::GordonWilke: e.push_back("viscosity + heat conduction: Gordon fits + Wilke rule"); break;
+  }
+  const char* rec = g.scheme.reconstruction == Reconstruction::FirstOrder ? "1st order"
+                    : g.scheme.reconstruction == Reconstruction::Muscl2   ? "MUSCL 2nd order"
+                                                                          : "MUSCL 3rd order (kappa = 1/3)";
+  e.push_back(std::string("convection: SLAU2 + ") + rec + ", SSP-RK3");
+  e.push_back(scene_.particles.enabled ? "particles: DEM parcels" : "particles: none (gas only)");
+  return e;
+}
+
+double Simulation::advance(double dt_max) {
+  double dt = std::min(gas_->stable_dt(), dt_max);
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    std::ostringstream s;
+    s << "step " << step_ << ", t = " << time_ << " s: time step " << dt << " s is not positive";
+    throw NumericalFailure(s.str());
+  }
+  try {
+    gas_->step(dt);
+  } catch (const NumericalFailure& f) {
+    std::ostringstream s;
+    s << "step " << step_ + 1 << ", t = " << time_ + dt << " s: " << f.what();
+    throw NumericalFailure(s.str());
+  }
+  time_ += dt;
+  ++step_;
+  return dt;
+}
+
+void Simulation::run(const std::string& output_dir) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  auto last_report = t0;
+  const double end = scene_.run.end_time;
+  const double interval = scene_.output.interval;
+  long long next_output = 1;
+
+  for (auto& o : observers_) o->on_start(view(output_dir));
+  double dt = 0.0;
+  while (time_ < end * (1.0 - 1e-14)) {
+    if (scene_.run.max_steps > 0 && step_ >= scene_.run.max_steps) break;
+    double target = end;
+    if (interval > 0.0) target = std::min(target, static_cast<double>(next_output) * interval);
+    dt = advance(target - time_);
+    const StateView v = view(output_dir);
+    for (auto& o : observers_) o->on_step(v);
+    if (interval > 0.0 && time_ >= static_cast<double>(next_output) * interval * (1.0 - 1e-12) &&
+        time_ < end * (1.0 - 1e-14)) {
+      for (auto& o : observers_) o->on_output(v);
+      ++next_output;
+    }
+    const auto now = clock::now();
+    if (progress_ && std::chrono::duration<double>(now - last_report).count() >= scene_.run.progress_interval) {
+      last_report = now;
+      Progress p;
+      p.time = time_;
+      p.end_time = end;
+      p.dt = dt;
+      p.step = step_;
+      p.wall_seconds = std::chrono::duration<double>(now - t0).count();
+      p.eta_seconds = time_ > 0.0 ? p.wall_seconds * (end - time_) / time_ : 0.0;
+      progress_(p);
+    }
+  }
+  for (auto& o : observers_) o->on_finish(view(output_dir));
+}
+
+}  // namespace dustlift

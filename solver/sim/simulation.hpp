@@ -1,0 +1,61 @@
+#pragma once
+// Drives a run: builds the models the scene enables, advances time (eq. 17 steps,
+// clipped to output and end times) and notifies observers at output times.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/gas/gas_solver.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/sim/observer.hpp"
+
+namespace dustlift {
+
+/// One progress report (for the CLI's progress line).
+struct Progress {
+  double time = 0.0, end_time = 0.0, dt = 0.0;
+  long long step = 0;
+  double wall_seconds = 0.0, eta_seconds = 0.0;
+};
+
+class Simulation {
+ public:
+  explicit Simulation(const Scene& scene);
+  ~Simulation();
+
+  void add_observer(std::unique_ptr<Observer> observer);
+  void set_progress_callback(std::function<void(const Progress&)> callback);
+
+  /// Runs to the scene's end time (or max_steps). Throws NumericalFailure on a blow-up,
+  /// naming step, time, cell and variable.
+  void run(const std::string& output_dir);
+
+  /// Advances one step of at most `dt_max` (used by run() and by tests).
+  double advance(double dt_max);
+
+  StateView view(const std::string& output_dir = {}) const;
+  double time() const { return time_; }
+  long long step() const { return step_; }
+  const Scene& scene() const { return scene_; }
+  GasSolver& gas() { return *gas_; }
+  const GasSolver& gas() const { return *gas_; }
+  const Grid2D& grid() const { return grid_; }
+
+  /// The physical effects this scene switches on, one short phrase each (for `dustlift info`).
+  std::vector<std::string> enabled_effects() const;
+
+ private:
+  Scene scene_;
+  Grid2D grid_;
+  std::unique_ptr<GasSolver> gas_;
+  std::vector<std::unique_ptr<Observer>> observers_;
+  std::function<void(const Progress&)> progress_;
+  double time_ = 0.0;
+  long long step_ = 0;
+};
+
+/// Ghost layers the gas scheme needs (MUSCL: 2).
+inline constexpr int kGhostLayers = 2;
+
+}  // namespace dustlift

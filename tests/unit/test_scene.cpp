@@ -1,0 +1,148 @@
+// Scene parsing: defaults, overrides, and errors that name file, line and key.
+#include <gtest/gtest.h>
+
+#include "solver/scene/scene.hpp"
+#include "solver/scene/table_reader.hpp"
+
+using namespace dustlift;
+
+namespace {
+
+const char* kMinimal = R"(
+[run]
+end_time = 0.2
+[grid.x]
+start = 0.0
+end = 1.0
+cells = 100
+[grid.y]
+start = 0.0
+end = 0.01
+cells = 1
+[gas]
+thermo = "calorically_perfect"
+gas_constant = 1.0
+[gas.transport]
+model = "inviscid"
+[initial]
+kind = "riemann"
+position = 0.5
+left = { rho = 1.0, p = 1.0 }
+right = { rho = 0.125, p = 0.1 }
+)";
+
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    (void)parse_scene(text, "scene.toml", overrides);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Scene, MinimalSceneResolvesDefaults) {
+  const Scene s = parse_scene(kMinimal, "scene.toml");
+  EXPECT_DOUBLE_EQ(s.run.end_time, 0.2);
+  EXPECT_EQ(s.grid.x.cells, 100u);
+  EXPECT_EQ(s.gas.thermo.model, ThermoModel::CaloricallyPerfect);
+  EXPECT_DOUBLE_EQ(s.gas.thermo.gamma, 1.4);
+  EXPECT_EQ(s.gas.scheme.reconstruction, Reconstruction::Muscl3);
+  EXPECT_EQ(s.initial.kind, InitialCondition::Kind::Riemann);
+  EXPECT_DOUBLE_EQ(s.initial.right.rho, 0.125);
+  EXPECT_FALSE(s.particles.enabled);
+  // The resolved scene lists defaults that the file did not give.
+  EXPECT_NE(s.resolved_toml.find("cfl = 0.5"), std::string::npos);
+  EXPECT_NE(s.resolved_toml.find("limiter = 'minmod'"), std::string::npos);
+}
+
+TEST(Scene, ResolvedSceneParsesBackToTheSameScene) {
+  const Scene a = parse_scene(kMinimal, "scene.toml", {"gas.scheme.cfl=0.3"});
+  const Scene b = parse_scene(a.resolved_toml, "resolved.toml");
+  EXPECT_DOUBLE_EQ(b.gas.scheme.cfl, 0.3);
+  EXPECT_EQ(b.grid.x.cells, a.grid.x.cells);
+  EXPECT_DOUBLE_EQ(b.initial.left.p, a.initial.left.p);
+}
+
+TEST(Scene, SetOverridesAnyKey) {
+  const Scene s = parse_scene(kMinimal, "scene.toml",
+                              {"grid.x.cells=400", "gas.scheme.reconstruction=first_order",
+                               "initial.left.p=2.5", "run.name=\"tube\""});
+  EXPECT_EQ(s.grid.x.cells, 400u);
+  EXPECT_EQ(s.gas.scheme.reconstruction, Reconstruction::FirstOrder);
+  EXPECT_DOUBLE_EQ(s.initial.left.p, 2.5);
+  EXPECT_EQ(s.run.name, "tube");
+}
+
+TEST(Scene, UnknownKeyNamesKeyAndLine) {
+  std::string text = kMinimal;
+  text += "[output]\nintervall = 0.1\n";
+  const std::string e = error_of(text);
+  EXPECT_NE(e.find("output.intervall"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("scene.toml:23"), std::string::npos) << e;
+}
+
+TEST(Scene, WrongTypeNamesKey) {
+  const std::string e = error_of(kMinimal, {"run.end_time=\"soon\""});
+  EXPECT_NE(e.find("run.end_time"), std::string::npos) << e;
+  EXPECT_NE(e.find("expected a number"), std::string::npos) << e;
+}
+
+TEST(Scene, NegativeSizeNamesKey) {
+  const std::string e = error_of(kMinimal, {"grid.x.cells=-5"});
+  EXPECT_NE(e.find("grid.x.cells"), std::string::npos) << e;
+  const std::string e2 = error_of(kMinimal, {"initial.right.rho=-0.1"});
+  EXPECT_NE(e2.find("initial.right.rho"), std::string::npos) << e2;
+}
+
+TEST(Scene, MissingRequiredTableOrKey) {
+  EXPECT_NE(error_of("[run]\nend_time = 1.0\n").find("'grid'"), std::string::npos);
+  const std::string e = error_of(kMinimal, {"initial.kind=shock"});
+  EXPECT_NE(e.find("initial.state"), std::string::npos) << e;
+}
+
+TEST(Scene, UnknownChoiceListsAlternatives) {
+  const std::string e = error_of(kMinimal, {"gas.scheme.limiter=superbee"});
+  EXPECT_NE(e.find("gas.scheme.limiter"), std::string::npos) << e;
+  EXPECT_NE(e.find("van_albada"), std::string::npos) << e;
+}
+
+TEST(Scene, StateNeedsExactlyOneOfRhoOrT) {
+  const std::string e = error_of(kMinimal, {"initial.left.T=300"});
+  EXPECT_NE(e.find("initial.left"), std::string::npos) << e;
+}
+
+TEST(Scene, TemperatureGivesDensityThroughGasConstant) {
+  const Scene s = parse_scene(kMinimal, "scene.toml",
+                              {"gas.gas_constant=288.19",
+                               "initial={ kind = 'shock', mach = 1.44, position = 0.5, state = { p = 101000.0, T = 300.0 } }"});
+  EXPECT_NEAR(s.initial.state.rho, 1.16821, 1e-5);
+}
+
+TEST(Scene, PeriodicBoundariesComeInPairs) {
+  const std::string e = error_of(kMinimal, {"boundary.left=periodic"});
+  EXPECT_NE(e.find("boundary.right"), std::string::npos) << e;
+}
+
+TEST(Scene, SyntaxErrorNamesLine) {
+  const std::string e = error_of("[run]\nend_time = = 1\n");
+  EXPECT_NE(e.find("scene.toml:2"), std::string::npos) << e;
+}
+
+TEST(Scene, StretchedAxisMatchesPaperGrid) {
+  // Paper section 3.1: 1901 x 161 points; 250 um cells on x in [0, 400] mm and y < 32 mm.
+  const Scene s = parse_scene(kMinimal, "scene.toml",
+                              {"grid.x={ start = -0.4, end = 0.4, cell_size = 250e-6, uniform_start = 0.0, cells_below = 300 }",
+                               "grid.y={ start = -0.002, end = 0.050, cell_size = 250e-6, uniform_end = 0.032, cells_above = 24 }",
+                               "initial.position=0.0"});
+  const auto x = build_axis_nodes(s.grid.x);
+  const auto y = build_axis_nodes(s.grid.y);
+  EXPECT_EQ(x.size(), 1901u);
+  EXPECT_EQ(y.size(), 161u);
+  EXPECT_NEAR(x[301] - x[300], 250e-6, 1e-12);
+  EXPECT_NEAR(x[300] - x[299], 250e-6, 1e-9);  // first stretched cell as wide as the uniform ones
+  EXPECT_DOUBLE_EQ(x.front(), -0.4);
+  EXPECT_DOUBLE_EQ(y.back(), 0.050);
+}
