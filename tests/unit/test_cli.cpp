@@ -1,0 +1,90 @@
+// The command line end to end: exit codes, error messages naming the key, no partial output.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "support/run_cli.hpp"
+
+namespace fs = std::filesystem;
+using dustlift::testing::fresh_dir;
+using dustlift::testing::run_cli;
+using dustlift::testing::write_file;
+
+namespace {
+
+const std::string kSod = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml";
+
+}  // namespace
+
+TEST(Cli, InfoPrintsEffectsGridAndSteps) {
+  const auto r = run_cli("info " + kSod);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("effects on"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("grid: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("estimated steps"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particles: none"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RunWritesResolvedSceneAndGasCollection) {
+  const auto dir = fresh_dir("cli_run");
+  const auto r = run_cli("run " + kSod + " --out " + dir.string() + " --set grid.x.cells=100 --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "scene.resolved.toml"));
+  EXPECT_TRUE(fs::exists(dir / "run.log"));
+  EXPECT_TRUE(fs::exists(dir / "gas.pvd"));
+  fs::remove_all(dir);
+}
+
+struct BadScene {
+  const char* name;
+  const char* overrides;
+  const char* key_in_message;
+};
+
+class CliBadScene : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(CliBadScene, ExitsWithCode2NamingTheKeyAndWritesNothing) {
+  const auto& p = GetParam();
+  const auto dir = fresh_dir(std::string("bad_") + p.name);
+  const fs::path out = dir / "out";
+  const auto r = run_cli("run " + kSod + " --out " + out.string() + " " + p.overrides);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(p.key_in_message), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "a rejected scene must leave no output folder";
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, CliBadScene,
+    ::testing::Values(BadScene{"unknown_key", "--set run.speed=2", "run.speed"},
+                      BadScene{"wrong_type", "--set grid.x.cells=\\\"many\\\"", "grid.x.cells"},
+                      BadScene{"negative_size", "--set grid.x.end=-1.0", "grid.x.end"},
+                      BadScene{"zero_cells", "--set grid.y.cells=0", "grid.y.cells"},
+                      BadScene{"negative_density", "--set initial.left.rho=-1", "initial.left.rho"},
+                      BadScene{"bad_cfl", "--set gas.scheme.cfl=1.5", "gas.scheme.cfl"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Cli, UnknownKeyInFileNamesFileAndLine) {
+  const auto dir = fresh_dir("bad_file");
+  write_file(dir / "s.toml", "[run]\nend_time = 0.1\nspeed = 3\n");
+  const auto r = run_cli("run " + (dir / "s.toml").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("s.toml:3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run.speed"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
+TEST(Cli, MissingSceneFileIsBadInput) {
+  const auto r = run_cli("run /nonexistent/scene.toml --out /tmp/never");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot open"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnwritableOutputFolderIsBadInput) {
+  const auto dir = fresh_dir("unwritable");
+  write_file(dir / "file", "x");  // a regular file where a folder is wanted
+  const auto r = run_cli("run " + kSod + " --out " + (dir / "file" / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("output folder"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
