@@ -57,6 +57,15 @@ class GasSolver {
   const Field2D& conserved(int k) const;
   void refresh_primitives();
 
+  /// Porosity alpha_g per cell (1 by default). The coupling writes the interior; ghosts are
+  /// refilled at every step. The conserved variables carry the factor alpha_g, so after
+  /// changing it the caller decides whether to rescale conserved(k) and refresh_primitives().
+  Field2D& porosity();
+
+  /// External volumetric sources added to d(conserved(k))/dt (per m^3, e.g. -f_p, -s_p - q_p
+  /// of eqs. 2-3); zero by default, held constant over one step(). k as in conserved().
+  Field2D& source(int k);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,612 @@
+// The gas solver: SLAU2 + MUSCL, porosity-weighted fluxes (physics-reference 2.1), central
+// viscous terms, SSP-RK3 (Shu-Osher), ghost-cell boundaries. See docs/gas-solver.md.
+#include "solver/gas/gas_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <variant>
+#include <vector>
+
+#include "solver/core/errors.hpp"
+#include "solver/gas/muscl.hpp"
+#include "solver/gas/shock_relations.hpp"
+#include "solver/gas/slau2.hpp"
+#include "solver/gas/thermo.hpp"
+#include "solver/gas/transport.hpp"
+
+namespace dustlift {
+namespace {
+
+/// Below this many interior cells the solver does not fork threads.
+constexpr std::size_t kMinCellsForThreads = 8192;
+
+using Thermo = std::variant<CaloricallyPerfectGas, ThermallyPerfectAir>;
+
+Thermo make_thermo(const ThermoConfig& c) {
+  if (c.model == ThermoModel::CaloricallyPerfect) return CaloricallyPerfectGas(c.gamma, c.gas_constant);
+  return ThermallyPerfectAir(c.gas_constant);
+}
+
+/// Which check a cell failed (0: none).
+enum class CellFault { None, NotFinite, Density, Pressure };
+
+/// Sign applied to the (x, y) velocity components when mirroring into a ghost cell.
+struct MirrorSigns {
+  double su, sv;
+};
+
+/// Ghost velocity signs for a boundary whose normal is along x (normal_is_x) or y.
+MirrorSigns mirror_signs(BoundaryKind k, bool normal_is_x) {
+  if (k == BoundaryKind::SlipWall) return normal_is_x ? MirrorSigns{-1.0, 1.0} : MirrorSigns{1.0, -1.0};
+  if (k == BoundaryKind::NoSlipWall) return {-1.0, -1.0};
+  return {1.0, 1.0};
+}
+
+/// Interior cell whose values ghost layer g (0 = adjacent) on the low side takes.
+int low_side_source(BoundaryKind k, int g, int n) {
+  if (k == BoundaryKind::Periodic) return ((n - 1 - g) % n + n) % n;
+  if (k == BoundaryKind::Outflow) return 0;
+  return std::min(g, n - 1);  // walls (mirror); inflow uses its state instead
+}
+int high_side_source(BoundaryKind k, int g, int n) {
+  if (k == BoundaryKind::Periodic) return g % n;
+  if (k == BoundaryKind::Outflow) return n - 1;
+  return std::max(n - 1 - g, 0);
+}
+
+}  // namespace
+
+struct GasSolver::Impl {
+  Grid2D grid;
+  GasConfig config;
+  Thermo thermo;
+  MusclSettings muscl;
+  bool viscous;
+  int nx, ny, ng, stride;
+  /// Small grids run on one thread: the fork/join barriers would cost more than the work.
+  bool threaded;
+  double R;
+
+  std::array<Field2D, 4> U, U0, source;
+  Field2D rho, u, v, p, T, alpha, mu, lambda;
+  /// Porosity-weighted face fluxes: x-faces (nx+1) per row, y-face rows (ny+1) of nx.
+  std::array<std::vector<double>, 4> fx, fy;
+  /// Geometry per index (ghosts included, offset ng): 1/width, 1/(c_{i+1}-c_i), 1/(c_{i+1}-c_{i-1}).
+  std::vector<double> inv_dx, inv_dy, inv_dxc, inv_dyc, inv_dx2, inv_dy2;
+  /// Inflow states along each boundary (one per boundary cell).
+  std::vector<PrimitiveState> inflow_left, inflow_right, inflow_bottom, inflow_top;
+  /// Per row: first faulty interior cell index (or -1) and its fault.
+  std::vector<int> fault_i;
+  std::vector<CellFault> fault_kind;
+
+  Impl(const Grid2D& g, const GasConfig& c)
+      : grid(g), config(c), thermo(make_thermo(c.thermo)), muscl(muscl_settings(c.scheme)),
+        viscous(c.transport.model != TransportModel::Inviscid), nx(g.nx()), ny(g.ny()), ng(g.ghosts()),
+        stride(g.stride()),
+        threaded(g.interior_cells() >= kMinCellsForThreads), R(c.thermo.gas_constant) {
+    if (ng < 2) throw std::invalid_argument("GasSolver: the grid needs at least 2 ghost layers");
+    if (nx < 1 || ny < 1) throw std::invalid_argument("GasSolver: the grid has no cells");
+    for (int k = 0; k < 4; ++k) {
+      U[k] = Field2D(grid);
+      U0[k] = Field2D(grid);
+      source[k] = Field2D(grid);
+      fx[k].assign(static_cast<std::size_t>(nx + 1) * ny, 0.0);
+      fy[k].assign(static_cast<std::size_t>(nx) * (ny + 1), 0.0);
+    }
+    rho = Field2D(grid, 1.0);
+    u = Field2D(grid);
+    v = Field2D(grid);
+    p = Field2D(grid, 1.0);
+    T = Field2D(grid, 300.0);
+    alpha = Field2D(grid, 1.0);
+    mu = Field2D(grid);
+    lambda = Field2D(grid);
+    build_geometry(grid.x(), inv_dx, inv_dxc, inv_dx2);
+    build_geometry(grid.y(), inv_dy, inv_dyc, inv_dy2);
+    fault_i.assign(static_cast<std::size_t>(ny), -1);
+    fault_kind.assign(static_cast<std::size_t>(ny), CellFault::None);
+  }
+
+  void build_geometry(const Axis& a, std::vector<double>& inv_w, std::vector<double>& inv_c,
+                      std::vector<double>& inv_2) {
+    const int n = a.cells(), g = a.ghosts();
+    inv_w.assign(static_cast<std::size_t>(n + 2 * g), 0.0);
+    inv_c = inv_w;
+    inv_2 = inv_w;
+    for (int i = -g; i < n + g; ++i) {
+      const auto k = static_cast<std::size_t>(i + g);
+      inv_w[k] = 1.0 / a.width(i);
+      if (i + 1 < n + g) inv_c[k] = 1.0 / (a.center(i + 1) - a.center(i));
+      if (i - 1 >= -g && i + 1 < n + g) inv_2[k] = 1.0 / (a.center(i + 1) - a.center(i - 1));
+    }
+  }
+
+  std::size_t at(int i, int j) const { return grid.index(i, j); }
+  double geo(const std::vector<double>& v, int i) const { return v[static_cast<std::size_t>(i + ng)]; }
+
+  // ---------------------------------------------------------------- primitives
+  /// Primitives of interior cell (i, j) from U; returns the fault found, if any.
+  template <class Th>
+  CellFault primitive_from_conserved(const Th& th, std::size_t c) {
+    const double a = alpha.data()[c];
+    const double m = U[0].data()[c];
+    const double r = m / a;
+    const double uu = U[1].data()[c] / m;
+    const double vv = U[2].data()[c] / m;
+    const double e = U[3].data()[c] / m - 0.5 * (uu * uu + vv * vv);
+    const double t = th.temperature(e, T.data()[c]);
+    const double pp = r * R * t;
+    rho.data()[c] = r;
+    u.data()[c] = uu;
+    v.data()[c] = vv;
+    T.data()[c] = t;
+    p.data()[c] = pp;
+    if (!(std::isfinite(U[0].data()[c]) && std::isfinite(U[1].data()[c]) && std::isfinite(U[2].data()[c]) &&
+          std::isfinite(U[3].data()[c]))) {
+      return CellFault::NotFinite;
+    }
+    if (!(r > 0.0)) return CellFault::Density;
+    if (!(pp > 0.0) || !std::isfinite(pp)) return CellFault::Pressure;
+    return CellFault::None;
+  }
+
+  template <class Th>
+  void conserved_from_primitive(const Th& th, int i, int j, const PrimitiveState& s) {
+    const std::size_t c = at(i, j);
+    const double a = alpha.data()[c];
+    const double t = s.p / (s.rho * R);
+    U[0].data()[c] = a * s.rho;
+    U[1].data()[c] = a * s.rho * s.u;
+    U[2].data()[c] = a * s.rho * s.v;
+    U[3].data()[c] = a * s.rho * (th.internal_energy(t) + 0.5 * (s.u * s.u + s.v * s.v));
+    T.data()[c] = t;
+  }
+
+  // ---------------------------------------------------------------- boundaries
+  void set_ghost(std::size_t dst, const PrimitiveState& s) {
+    rho.data()[dst] = s.rho;
+    u.data()[dst] = s.u;
+    v.data()[dst] = s.v;
+    p.data()[dst] = s.p;
+    T.data()[dst] = s.p / (s.rho * R);
+  }
+  void copy_ghost(std::size_t dst, std::size_t src, MirrorSigns s) {
+    rho.data()[dst] = rho.data()[src];
+    u.data()[dst] = s.su * u.data()[src];
+    v.data()[dst] = s.sv * v.data()[src];
+    p.data()[dst] = p.data()[src];
+    T.data()[dst] = T.data()[src];
+  }
+
+  void fill_x_ghosts_row(int j) {
+    const BoundaryConfig& b = config.boundary;
+    const MirrorSigns sl = mirror_signs(b.left, true), sr = mirror_signs(b.right, true);
+    for (int g = 0; g < ng; ++g) {
+      if (b.left == BoundaryKind::Inflow) {
+        set_ghost(at(-1 - g, j), inflow_left[static_cast<std::size_t>(j)]);
+      } else {
+        copy_ghost(at(-1 - g, j), at(low_side_source(b.left, g, nx), j), sl);
+      }
+      if (b.right == BoundaryKind::Inflow) {
+        set_ghost(at(nx + g, j), inflow_right[static_cast<std::size_t>(j)]);
+      } else {
+        copy_ghost(at(nx + g, j), at(high_side_source(b.right, g, nx), j), sr);
+      }
+    }
+  }
+
+  /// Column i in [-ng, nx+ng): fills the corners from the x-ghosts already set.
+  void fill_y_ghosts_column(int i) {
+    const BoundaryConfig& b = config.boundary;
+    const MirrorSigns sb = mirror_signs(b.bottom, false), st = mirror_signs(b.top, false);
+    const auto edge = static_cast<std::size_t>(std::clamp(i, 0, nx - 1));
+    for (int g = 0; g < ng; ++g) {
+      if (b.bottom == BoundaryKind::Inflow) {
+        set_ghost(at(i, -1 - g), inflow_bottom[edge]);
+      } else {
+        copy_ghost(at(i, -1 - g), at(i, low_side_source(b.bottom, g, ny)), sb);
+      }
+      if (b.top == BoundaryKind::Inflow) {
+        set_ghost(at(i, ny + g), inflow_top[edge]);
+      } else {
+        copy_ghost(at(i, ny + g), at(i, high_side_source(b.top, g, ny)), st);
+      }
+    }
+  }
+
+  /// Porosity ghosts: periodic wraps, every other kind mirrors (zero normal gradient).
+  void fill_porosity_ghosts() {
+    const BoundaryConfig& b = config.boundary;
+    for (int j = 0; j < ny; ++j) {
+      for (int g = 0; g < ng; ++g) {
+        const int l = b.left == BoundaryKind::Periodic ? low_side_source(b.left, g, nx) : std::min(g, nx - 1);
+        const int r = b.right == BoundaryKind::Periodic ? high_side_source(b.right, g, nx) : std::max(nx - 1 - g, 0);
+        alpha(-1 - g, j) = alpha(l, j);
+        alpha(nx + g, j) = alpha(r, j);
+      }
+    }
+    for (int i = -ng; i < nx + ng; ++i) {
+      for (int g = 0; g < ng; ++g) {
+        const int lo = b.bottom == BoundaryKind::Periodic ? low_side_source(b.bottom, g, ny) : std::min(g, ny - 1);
+        const int hi = b.top == BoundaryKind::Periodic ? high_side_source(b.top, g, ny) : std::max(ny - 1 - g, 0);
+        alpha(i, -1 - g) = alpha(i, lo);
+        alpha(i, ny + g) = alpha(i, hi);
+      }
+    }
+  }
+
+  // ---------------------------------------------------------------- fluxes
+  template <class Th>
+  FaceState face_state(const Th& th, double r, double uu, double vv, double pp) const {
+    const double t = pp / (r * R);
+    double h, cp;
+    th.enthalpy_and_cp(t, h, cp);
+    const double gamma = cp / (cp - R);
+    return {r, uu, vv, pp, h + 0.5 * (uu * uu + vv * vv), std::sqrt(gamma * R * t)};
+  }
+
+  /// Inviscid SLAU2 flux through the face between cells c - step and c (normal (nx, ny)).
+  template <class Th>
+  ConservedFlux inviscid_face_flux(const Th& th, std::size_t c, std::ptrdiff_t step, double n_x,
+                                   double n_y) const {
+    const double* fr = rho.data();
+    const double* fu = u.data();
+    const double* fv = v.data();
+    const double* fp = p.data();
+    const std::size_t m2 = c - 2 * step, m1 = c - step, p1 = c + step;
+    FacePair r = muscl_face(fr[m2], fr[m1], fr[c], fr[p1], muscl);
+    FacePair pr = muscl_face(fp[m2], fp[m1], fp[c], fp[p1], muscl);
+    FacePair uu, vv;
+    if (r.left <= 0.0 || r.right <= 0.0 || pr.left <= 0.0 || pr.right <= 0.0) {
+      // Positivity safeguard: first order at this face.
+      r = {fr[m1], fr[c]};
+      pr = {fp[m1], fp[c]};
+      uu = {fu[m1], fu[c]};
+      vv = {fv[m1], fv[c]};
+    } else {
+      uu = muscl_face(fu[m2], fu[m1], fu[c], fu[p1], muscl);
+      vv = muscl_face(fv[m2], fv[m1], fv[c], fv[p1], muscl);
+    }
+    return slau2_flux(face_state(th, r.left, uu.left, vv.left, pr.left),
+                      face_state(th, r.right, uu.right, vv.right, pr.right), n_x, n_y);
+  }
+
+  template <class Th>
+  void compute_transport(const Th& th) {
+    const TransportConfig& tc = config.transport;
+#pragma omp for schedule(static)
+    for (int j = -1; j <= ny; ++j) {
+      for (int i = -1; i <= nx; ++i) {
+        const std::size_t c = at(i, j);
+        const double t = T.data()[c];
+        const TransportProperties tp = transport_properties(tc, t, th.cp(t));
+        mu.data()[c] = tp.mu;
+        lambda.data()[c] = tp.lambda;
+      }
+    }
+  }
+
+  template <class Th>
+  void compute_x_fluxes(const Th& th) {
+    const std::size_t nf = static_cast<std::size_t>(nx + 1);
+#pragma omp for schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      const std::size_t row = static_cast<std::size_t>(j) * nf;
+      for (int f = 0; f <= nx; ++f) {
+        const std::size_t c = at(f, j);  // face f: between cells f-1 and f
+        ConservedFlux F = inviscid_face_flux(th, c, 1, 1.0, 0.0);
+        if (viscous) {
+          const std::size_t l = c - 1;
+          const std::size_t cu = static_cast<std::size_t>(stride);
+          const double idn = geo(inv_dxc, f - 1);
+          const double ux = (u.data()[c] - u.data()[l]) * idn;
+          const double vx = (v.data()[c] - v.data()[l]) * idn;
+          const double tx = (T.data()[c] - T.data()[l]) * idn;
+          const double it = geo(inv_dy2, j);
+          const double uy = 0.5 * it * (u.data()[c + cu] - u.data()[c - cu] + u.data()[l + cu] - u.data()[l - cu]);
+          const double vy = 0.5 * it * (v.data()[c + cu] - v.data()[c - cu] + v.data()[l + cu] - v.data()[l - cu]);
+          const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
+          const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
+          const double uf = 0.5 * (u.data()[c] + u.data()[l]);
+          const double vf = 0.5 * (v.data()[c] + v.data()[l]);
+          const double txx = mf * (4.0 / 3.0 * ux - 2.0 / 3.0 * vy);
+          const double txy = mf * (uy + vx);
+          F.momentum_x -= txx;
+          F.momentum_y -= txy;
+          F.energy -= uf * txx + vf * txy + kf * tx;
+        }
+        const double af = 0.5 * (alpha.data()[c] + alpha.data()[c - 1]);
+        const std::size_t k = row + static_cast<std::size_t>(f);
+        fx[0][k] = af * F.mass;
+        fx[1][k] = af * F.momentum_x;
+        fx[2][k] = af * F.momentum_y;
+        fx[3][k] = af * F.energy;
+      }
+    }
+  }
+
+  template <class Th>
+  void compute_y_fluxes(const Th& th) {
+    const auto step = static_cast<std::ptrdiff_t>(stride);
+#pragma omp for schedule(static)
+    for (int jf = 0; jf <= ny; ++jf) {
+      const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx);
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t c = at(i, jf);  // face jf: between cells (i, jf-1) and (i, jf)
+        ConservedFlux F = inviscid_face_flux(th, c, step, 0.0, 1.0);
+        if (viscous) {
+          const std::size_t l = c - static_cast<std::size_t>(stride);
+          const double idn = geo(inv_dyc, jf - 1);
+          const double uy = (u.data()[c] - u.data()[l]) * idn;
+          const double vy = (v.data()[c] - v.data()[l]) * idn;
+          const double ty = (T.data()[c] - T.data()[l]) * idn;
+          const double it = geo(inv_dx2, i);
+          const double ux = 0.5 * it * (u.data()[c + 1] - u.data()[c - 1] + u.data()[l + 1] - u.data()[l - 1]);
+          const double vx = 0.5 * it * (v.data()[c + 1] - v.data()[c - 1] + v.data()[l + 1] - v.data()[l - 1]);
+          const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
+          const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
+          const double uf = 0.5 * (u.data()[c] + u.data()[l]);
+          const double vf = 0.5 * (v.data()[c] + v.data()[l]);
+          const double tyy = mf * (4.0 / 3.0 * vy - 2.0 / 3.0 * ux);
+          const double txy = mf * (uy + vx);
+          F.momentum_x -= txy;
+          F.momentum_y -= tyy;
+          F.energy -= uf * txy + vf * tyy + kf * ty;
+        }
+        const double af = 0.5 * (alpha.data()[c] + alpha.data()[c - static_cast<std::size_t>(stride)]);
+        const std::size_t k = row + static_cast<std::size_t>(i);
+        fy[0][k] = af * F.mass;
+        fy[1][k] = af * F.momentum_x;
+        fy[2][k] = af * F.momentum_y;
+        fy[3][k] = af * F.energy;
+      }
+    }
+  }
+
+  /// U = c_old U0 + c_new (U + dt L(U)), then the primitives of the new U (and the checks).
+  /// L contains the flux divergence, the porosity pressure source p_i (a_{i+1/2} - a_{i-1/2})/dx
+  /// (so that a grad p = div(a p) - p grad a holds discretely) and the external sources.
+  template <class Th>
+  void update(const Th& th, double dt, double c_old, double c_new) {
+    const std::size_t nfx = static_cast<std::size_t>(nx + 1);
+    const std::size_t nfy = static_cast<std::size_t>(nx);
+#pragma omp for schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      const double idy = geo(inv_dy, j);
+      int first_fault = -1;
+      CellFault kind = CellFault::None;
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t c = at(i, j);
+        const double idx = geo(inv_dx, i);
+        const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i);
+        const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i);
+        const double* a = alpha.data();
+        const double ax_plus = 0.5 * (a[c] + a[c + 1]), ax_minus = 0.5 * (a[c - 1] + a[c]);
+        const double ay_plus = 0.5 * (a[c] + a[c + static_cast<std::size_t>(stride)]);
+        const double ay_minus = 0.5 * (a[c - static_cast<std::size_t>(stride)] + a[c]);
+        const double pc = p.data()[c];
+        double rhs[4];
+        for (int k = 0; k < 4; ++k) {
+          rhs[k] = -(fx[k][kx + 1] - fx[k][kx]) * idx - (fy[k][ky + nfy] - fy[k][ky]) * idy +
+                   source[k].data()[c];
+        }
+        rhs[1] += pc * (ax_plus - ax_minus) * idx;
+        rhs[2] += pc * (ay_plus - ay_minus) * idy;
+        for (int k = 0; k < 4; ++k) {
+          double& q = U[k].data()[c];
+          q = c_old * U0[k].data()[c] + c_new * (q + dt * rhs[k]);
+        }
+        const CellFault f = primitive_from_conserved(th, c);
+        if (f != CellFault::None && first_fault < 0) {
+          first_fault = i;
+          kind = f;
+        }
+      }
+      fault_i[static_cast<std::size_t>(j)] = first_fault;
+      fault_kind[static_cast<std::size_t>(j)] = kind;
+    }
+  }
+
+  void fill_ghosts_parallel() {
+#pragma omp for schedule(static)
+    for (int j = 0; j < ny; ++j) fill_x_ghosts_row(j);
+#pragma omp for schedule(static)
+    for (int i = -ng; i < nx + ng; ++i) fill_y_ghosts_column(i);
+  }
+
+  template <class Th>
+  void stage(const Th& th, double dt, double c_old, double c_new) {
+#pragma omp parallel if (threaded)
+    {
+      fill_ghosts_parallel();
+      if (viscous) compute_transport(th);
+      compute_x_fluxes(th);
+      compute_y_fluxes(th);
+      update(th, dt, c_old, c_new);
+    }
+    throw_on_fault();
+  }
+
+  void throw_on_fault() const {
+    for (int j = 0; j < ny; ++j) {
+      const int i = fault_i[static_cast<std::size_t>(j)];
+      if (i < 0) continue;
+      const std::size_t c = at(i, j);
+      std::ostringstream m;
+      m.precision(6);
+      m << "gas cell (i, j) = (" << i << ", " << j << ") at x = " << grid.x().center(i)
+        << " m, y = " << grid.y().center(j) << " m: ";
+      switch (fault_kind[static_cast<std::size_t>(j)]) {
+        case CellFault::NotFinite:
+          m << "conserved variables not finite (a rho = " << U[0].data()[c] << ", a rho u = " << U[1].data()[c]
+            << ", a rho v = " << U[2].data()[c] << ", a E = " << U[3].data()[c] << ")";
+          break;
+        case CellFault::Density:
+          m << "density rho = " << rho.data()[c] << " kg/m^3 is not positive";
+          break;
+        default:
+          m << "pressure p = " << p.data()[c] << " Pa is not positive (T = " << T.data()[c] << " K)";
+          break;
+      }
+      throw NumericalFailure(m.str());
+    }
+  }
+
+  template <class Th>
+  void refresh(const Th& th) {
+    fill_porosity_ghosts();
+#pragma omp parallel if (threaded)
+    {
+#pragma omp for schedule(static)
+      for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) (void)primitive_from_conserved(th, at(i, j));
+      }
+      fill_ghosts_parallel();
+    }
+  }
+
+  template <class Th>
+  void rk3_step(const Th& th, double dt) {
+    fill_porosity_ghosts();
+    for (int k = 0; k < 4; ++k) U0[k].raw() = U[k].raw();  // same size: no allocation
+    stage(th, dt, 0.0, 1.0);
+    stage(th, dt, 0.75, 0.25);
+    stage(th, dt, 1.0 / 3.0, 2.0 / 3.0);
+#pragma omp parallel if (threaded)
+    fill_ghosts_parallel();
+  }
+
+  template <class Th>
+  double stable_dt(const Th& th) const {
+    double max_rate = 0.0;
+    double min_viscous_dt = std::numeric_limits<double>::infinity();
+    const TransportConfig& tc = config.transport;
+#pragma omp parallel for if (threaded) schedule(static) reduction(max : max_rate) reduction(min : min_viscous_dt)
+    for (int j = 0; j < ny; ++j) {
+      const double idy = geo(inv_dy, j);
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t c = at(i, j);
+        const double t = T.data()[c];
+        const double cs = std::sqrt(th.sound_speed_squared(t));
+        const double idx = geo(inv_dx, i);
+        max_rate = std::max(max_rate, (std::abs(u.data()[c]) + cs) * idx + (std::abs(v.data()[c]) + cs) * idy);
+        if (viscous) {
+          const double cp = th.cp(t);
+          const TransportProperties tp = transport_properties(tc, t, cp);
+          const double diffusivity_factor = std::max(1.0, th.gamma(t) * tp.lambda / (tp.mu * cp));
+          const double h2 = std::min(1.0 / (idx * idx), 1.0 / (idy * idy));
+          min_viscous_dt = std::min(min_viscous_dt, 0.25 * h2 * rho.data()[c] / (tp.mu * diffusivity_factor));
+        }
+      }
+    }
+    return std::min(config.scheme.cfl / max_rate, min_viscous_dt);
+  }
+
+  template <class Th>
+  void initialize(const Th& th, const InitialCondition& ic) {
+    fill_porosity_ghosts();
+    PrimitiveState below = ic.left, above = ic.right;
+    if (ic.kind == InitialCondition::Kind::Shock) {
+      below = normal_shock(ic.state, ic.mach, config.thermo, ic.axis).post;
+      above = ic.state;
+    }
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        PrimitiveState s = ic.state;
+        if (ic.kind != InitialCondition::Kind::Uniform) {
+          const double coord = ic.axis == 'y' ? grid.y().center(j) : grid.x().center(i);
+          s = coord < ic.position ? below : above;
+        }
+        conserved_from_primitive(th, i, j, s);
+        (void)primitive_from_conserved(th, at(i, j));
+      }
+    }
+    record_inflow_states();  // also fills the ghosts
+  }
+
+  PrimitiveState state_at(int i, int j) const {
+    return {rho(i, j), u(i, j), v(i, j), p(i, j)};
+  }
+
+  void record_inflow_states() {
+    const BoundaryConfig& b = config.boundary;
+    auto record = [&](std::vector<PrimitiveState>& out, int n, auto cell) {
+      out.resize(static_cast<std::size_t>(n));
+      for (int k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = b.inflow_given ? b.inflow : cell(k);
+    };
+    record(inflow_left, ny, [&](int j) { return state_at(0, j); });
+    record(inflow_right, ny, [&](int j) { return state_at(nx - 1, j); });
+    record(inflow_bottom, nx, [&](int i) { return state_at(i, 0); });
+    record(inflow_top, nx, [&](int i) { return state_at(i, ny - 1); });
+#pragma omp parallel if (threaded)
+    fill_ghosts_parallel();
+  }
+};
+
+GasSolver::GasSolver(const Grid2D& grid, const GasConfig& config)
+    : impl_(std::make_unique<Impl>(grid, config)) {
+  // Until initialize(): a uniform state at rest so that every accessor is valid.
+  initialize(InitialCondition{});
+}
+GasSolver::~GasSolver() = default;
+GasSolver::GasSolver(GasSolver&&) noexcept = default;
+GasSolver& GasSolver::operator=(GasSolver&&) noexcept = default;
+
+void GasSolver::initialize(const InitialCondition& ic) {
+  std::visit([&](const auto& th) { impl_->initialize(th, ic); }, impl_->thermo);
+}
+
+double GasSolver::stable_dt() const {
+  return std::visit([&](const auto& th) { return impl_->stable_dt(th); }, impl_->thermo);
+}
+
+void GasSolver::step(double dt) {
+  std::visit([&](const auto& th) { impl_->rk3_step(th, dt); }, impl_->thermo);
+}
+
+const Grid2D& GasSolver::grid() const { return impl_->grid; }
+const GasConfig& GasSolver::config() const { return impl_->config; }
+
+GasPrimitives GasSolver::primitives() const {
+  return {&impl_->rho, &impl_->u, &impl_->v, &impl_->p, &impl_->T, &impl_->alpha};
+}
+
+GasTotals GasSolver::totals() const {
+  GasTotals t;
+  const Impl& m = *impl_;
+  for (int j = 0; j < m.ny; ++j) {
+    GasTotals row;
+    for (int i = 0; i < m.nx; ++i) {
+      const double area = m.grid.area(i, j);
+      row.mass += m.U[0](i, j) * area;
+      row.momentum_x += m.U[1](i, j) * area;
+      row.momentum_y += m.U[2](i, j) * area;
+      row.energy += m.U[3](i, j) * area;
+    }
+    t.mass += row.mass;
+    t.momentum_x += row.momentum_x;
+    t.momentum_y += row.momentum_y;
+    t.energy += row.energy;
+  }
+  return t;
+}
+
+double GasSolver::sound_speed(int i, int j) const {
+  const double t = impl_->T(i, j);
+  return std::visit([&](const auto& th) { return std::sqrt(th.sound_speed_squared(t)); }, impl_->thermo);
+}
+
+Field2D& GasSolver::conserved(int k) { return impl_->U[static_cast<std::size_t>(k)]; }
+const Field2D& GasSolver::conserved(int k) const { return impl_->U[static_cast<std::size_t>(k)]; }
+
+void GasSolver::refresh_primitives() {
+  std::visit([&](const auto& th) { impl_->refresh(th); }, impl_->thermo);
+}
+
+Field2D& GasSolver::porosity() { return impl_->alpha; }
+
+Field2D& GasSolver::source(int k) { return impl_->source[static_cast<std::size_t>(k)]; }
+
+}  // namespace dustlift

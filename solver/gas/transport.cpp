@@ -1,0 +1,72 @@
+#include "solver/gas/transport.hpp"
+
+#include <cmath>
+
+#include "solver/gas/thermo.hpp"
+
+namespace dustlift {
+namespace {
+
+// NASA CEA trans.inp coefficients (physics-reference 1.3 table).
+constexpr GordonFit kN2ViscosityLow{0.62526577, -31.779652, -1640.7983, 1.7454992};
+constexpr GordonFit kN2ViscosityHigh{0.87395209, 561.52222, -173948.09, -0.39335958};
+constexpr GordonFit kN2ConductivityLow{0.85439436, 105.73224, -12347.848, 0.47793128};
+constexpr GordonFit kN2ConductivityHigh{0.88407146, 133.57293, -11429.64, 0.24417019};
+constexpr GordonFit kO2ViscosityLow{0.60916180, -52.244847, -599.74009, 2.0410801};
+constexpr GordonFit kO2ViscosityHigh{0.72216486, 175.50839, -57974.816, 1.0901044};
+constexpr GordonFit kO2ConductivityLow{0.77229167, 6.8463210, -5893.3377, 1.2210365};
+constexpr GordonFit kO2ConductivityHigh{0.90917351, 291.24182, -79650.171, 0.064851631};
+
+constexpr double kMicropoiseToPaS = 1e-7;
+constexpr double kMicroWattPerCmKToSI = 1e-4;
+constexpr double kFitRangeBreak = 1000.0;  // K
+
+TransportProperties species(double T, const GordonFit& mu_low, const GordonFit& mu_high,
+                            const GordonFit& k_low, const GordonFit& k_high) {
+  const bool low = T < kFitRangeBreak;
+  return {kMicropoiseToPaS * evaluate_gordon_fit(low ? mu_low : mu_high, T),
+          kMicroWattPerCmKToSI * evaluate_gordon_fit(low ? k_low : k_high, T)};
+}
+
+/// Wilke's Phi_ij (Wilke 1950).
+double wilke_phi(double mu_i, double mu_j, double m_i, double m_j) {
+  const double a = 1.0 + std::sqrt(mu_i / mu_j) * std::sqrt(std::sqrt(m_j / m_i));
+  return a * a / std::sqrt(8.0 * (1.0 + m_i / m_j));
+}
+
+}  // namespace
+
+double evaluate_gordon_fit(const GordonFit& f, double T) {
+  const double inv = 1.0 / T;
+  return std::exp(f.A * std::log(T) + inv * (f.B + f.C * inv) + f.D);
+}
+
+TransportProperties nitrogen_transport(double T) {
+  return species(T, kN2ViscosityLow, kN2ViscosityHigh, kN2ConductivityLow, kN2ConductivityHigh);
+}
+
+TransportProperties oxygen_transport(double T) {
+  return species(T, kO2ViscosityLow, kO2ViscosityHigh, kO2ConductivityLow, kO2ConductivityHigh);
+}
+
+TransportProperties wilke_binary_mixture(const TransportProperties& s1, double x1, double m1,
+                                         const TransportProperties& s2, double x2, double m2) {
+  const double phi12 = wilke_phi(s1.mu, s2.mu, m1, m2);
+  const double phi21 = wilke_phi(s2.mu, s1.mu, m2, m1);
+  const double d1 = x1 + x2 * phi12;  // sum_j x_j Phi_1j with Phi_11 = 1
+  const double d2 = x2 + x1 * phi21;
+  return {x1 * s1.mu / d1 + x2 * s2.mu / d2, x1 * s1.lambda / d1 + x2 * s2.lambda / d2};
+}
+
+TransportProperties air_transport_gordon_wilke(double T) {
+  return wilke_binary_mixture(oxygen_transport(T), nasa7::kMoleFractionO2, nasa7::kMolarMassO2,
+                              nitrogen_transport(T), nasa7::kMoleFractionN2, nasa7::kMolarMassN2);
+}
+
+double sutherland_viscosity(double T, const TransportConfig& c) {
+  const double r = T / c.sutherland_t_ref;
+  return c.sutherland_mu_ref * r * std::sqrt(r) * (c.sutherland_t_ref + c.sutherland_s) /
+         (T + c.sutherland_s);
+}
+
+}  // namespace dustlift

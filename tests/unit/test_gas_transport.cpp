@@ -1,0 +1,56 @@
+// Transport: Gordon fits + Wilke rule against physics-reference 1.3, Sutherland, the model switch.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver/gas/thermo.hpp"
+#include "solver/gas/transport.hpp"
+
+using namespace dustlift;
+
+namespace {
+void expect_rel(double got, double want, double rel) { EXPECT_NEAR(got, want, rel * std::abs(want)); }
+}  // namespace
+
+TEST(GordonWilke, SpeciesValuesAt300K) {
+  expect_rel(nitrogen_transport(300.0).mu, 1.79059e-5, 2e-5);
+  expect_rel(oxygen_transport(300.0).mu, 2.07430e-5, 2e-5);
+  expect_rel(nitrogen_transport(300.0).lambda, 2.61505e-2, 2e-5);
+  expect_rel(oxygen_transport(300.0).lambda, 2.65964e-2, 2e-5);
+}
+
+TEST(GordonWilke, AirValuesAt300And384K) {
+  const TransportProperties a300 = air_transport_gordon_wilke(300.0);
+  expect_rel(a300.mu, 1.85031e-5, 2e-5);
+  expect_rel(a300.lambda, 2.62497e-2, 2e-5);
+  const ThermallyPerfectAir air;
+  EXPECT_NEAR(a300.mu * air.cp(300.0) / a300.lambda, 0.713, 1e-3);  // Prandtl number
+  const TransportProperties a384 = air_transport_gordon_wilke(384.2);
+  expect_rel(a384.mu, 2.22948e-5, 2e-5);
+  expect_rel(a384.lambda, 3.18296e-2, 2e-5);
+}
+
+TEST(GordonWilke, WilkeRuleOfIdenticalSpeciesIsIdentity) {
+  const TransportProperties s{2e-5, 3e-2};
+  const TransportProperties m = wilke_binary_mixture(s, 0.3, 0.028, s, 0.7, 0.028);
+  expect_rel(m.mu, s.mu, 1e-14);
+  expect_rel(m.lambda, s.lambda, 1e-14);
+}
+
+TEST(Sutherland, ReferenceAndTableValues) {
+  const TransportConfig c;
+  expect_rel(sutherland_viscosity(273.15, c), 1.716e-5, 1e-14);
+  expect_rel(sutherland_viscosity(300.0, c), 1.8459e-5, 2e-4);  // standard air table value
+}
+
+TEST(TransportModelSwitch, ConstantAndInviscid) {
+  TransportConfig c;
+  c.model = TransportModel::Constant;
+  c.viscosity = 1e-3;
+  c.prandtl = 0.5;
+  const TransportProperties t = transport_properties(c, 400.0, 1000.0);
+  EXPECT_DOUBLE_EQ(t.mu, 1e-3);
+  EXPECT_DOUBLE_EQ(t.lambda, 1e-3 * 1000.0 / 0.5);
+  c.model = TransportModel::Inviscid;
+  EXPECT_EQ(transport_properties(c, 400.0, 1000.0).mu, 0.0);
+}
