@@ -89,15 +89,15 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
   const auto total = static_cast<std::size_t>(n_ + 2 * ng_);
   faces_.resize(total + 1);
   for (int i = 0; i <= n_; ++i) faces_[static_cast<std::size_t>(i + ng_)] = interior_faces_[static_cast<std::size_t>(i)];
-  // Ghost faces mirror the interior widths about each end.
+  // Ghost cells mirror the interior widths about each end (the last interior width is
+  // repeated when there are fewer interior cells than ghosts).
   for (int g = 1; g <= ng_; ++g) {
-    const int left_mirror = std::min(g, n_);
-    const int right_mirror = std::min(g, n_);
-    faces_[static_cast<std::size_t>(ng_ - g)] =
-        2.0 * interior_faces_[0] - interior_faces_[static_cast<std::size_t>(left_mirror)];
-    faces_[static_cast<std::size_t>(ng_ + n_ + g)] =
-        2.0 * interior_faces_[static_cast<std::size_t>(n_)] -
-        interior_faces_[static_cast<std::size_t>(n_ - right_mirror)];
+    const auto k = static_cast<std::size_t>(std::min(g, n_));
+    const double w_left = interior_faces_[k] - interior_faces_[k - 1];
+    const double w_right = interior_faces_[static_cast<std::size_t>(n_) - k + 1] -
+                           interior_faces_[static_cast<std::size_t>(n_) - k];
+    faces_[static_cast<std::size_t>(ng_ - g)] = faces_[static_cast<std::size_t>(ng_ - g + 1)] - w_left;
+    faces_[static_cast<std::size_t>(ng_ + n_ + g)] = faces_[static_cast<std::size_t>(ng_ + n_ + g - 1)] + w_right;
   }
   centers_.resize(total);
   widths_.resize(total);

@@ -8,6 +8,14 @@
 
 namespace dustlift {
 
+namespace {
+std::string fmt_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+}  // namespace
+
 Simulation::Simulation(const Scene& scene)
     : scene_(scene), grid_(scene.grid.x, scene.grid.y, kGhostLayers) {
   gas_ = std::make_unique<GasSolver>(grid_, scene_.gas);
@@ -42,7 +50,7 @@ std::vector<std::string> Simulation::enabled_effects() const {
   const auto& g = scene_.gas;
   e.push_back(g.thermo.model == ThermoModel::ThermallyPerfect
                   ? "gas: thermally perfect air (NASA polynomials, O2:N2 = 1:3.76)"
-                  : "gas: calorically perfect (gamma = " + std::to_string(g.thermo.gamma) + ")");
+                  : "gas: calorically perfect (gamma = " + fmt_number(g.thermo.gamma) + ")");
   switch (g.transport.model) {
     case TransportModel::Inviscid: e.push_back("viscosity: off (Euler)"); break;
     case TransportModel::Constant: e.push_back("viscosity + heat conduction: constant mu, Pr"); break;
