@@ -3,6 +3,7 @@
 // "columns" (comma-separated CSV headers, in order) so readers can restore column order.
 #include <hdf5.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -84,7 +85,63 @@ void write_column(hid_t group, const std::string& name, const std::string& unit,
         "write dataset " + name);
 }
 
+std::string read_string_attribute(hid_t object, const char* name) {
+  Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+  Handle type(H5Aget_type(attr), H5Tclose, "attribute type");
+  std::string value(H5Tget_size(type), '\0');
+  check(H5Aread(attr, type, value.data()), std::string("read attribute ") + name);
+  value.erase(value.find_last_not_of('\0') + 1);
+  return value;
+}
+
 }  // namespace
+
+SeriesTable read_series_h5(const std::string& path, const std::string& name) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error("no series file " + path);
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + path);
+  const std::string group_path = std::string("/").append(name);
+  if (H5Lexists(file, group_path.c_str(), H5P_DEFAULT) <= 0)
+    throw std::runtime_error("no series " + name + " in " + path);
+  Handle group(H5Gopen2(file, group_path.c_str(), H5P_DEFAULT), H5Gclose,
+               "open group " + name + " in " + path);
+  // Column order comes from "columns" (CSV headers); names and units from the datasets.
+  const std::string headers = read_string_attribute(group, "columns");
+  std::vector<SeriesColumn> columns;
+  std::vector<std::vector<double>> values;
+  std::size_t start = 0;
+  while (start <= headers.size()) {
+    const std::size_t end = std::min(headers.find(',', start), headers.size());
+    const std::string header = headers.substr(start, end - start);
+    start = end + 1;
+    // The dataset whose name + "_" + units equals the header (names may hold '_').
+    bool found = false;
+    for (std::size_t cut = header.rfind('_'); cut != std::string::npos && cut > 0 && !found;
+         cut = header.rfind('_', cut - 1)) {
+      const std::string column = header.substr(0, cut), unit = header.substr(cut + 1);
+      if (H5Lexists(group, column.c_str(), H5P_DEFAULT) <= 0) continue;
+      Handle dataset(H5Dopen2(group, column.c_str(), H5P_DEFAULT), H5Dclose, "open " + column);
+      if (read_string_attribute(dataset, "units") != unit) continue;
+      Handle space(H5Dget_space(dataset), H5Sclose, "dataset space");
+      const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+      std::vector<double> v(n);
+      if (n)
+        check(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+              "read " + column);
+      columns.push_back({column, unit});
+      values.push_back(std::move(v));
+      found = true;
+    }
+    if (!found) throw std::runtime_error("series " + name + ": no dataset for column " + header);
+  }
+  SeriesTable table(name, columns);
+  const std::size_t rows = values.empty() ? 0 : values.front().size();
+  std::vector<double> row(columns.size());
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c) row[c] = values[c].at(r);
+    table.append_row(row);
+  }
+  return table;
+}
 
 void write_series_h5(const std::string& path, const SeriesTable& table) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());

@@ -67,4 +67,8 @@ class SeriesSink {
 /// (creating the file if missing or unreadable). Safe to call repeatedly.
 void write_series_h5(const std::string& path, const SeriesTable& table);
 
+/// Reads group /<name> back (column order and units from its attributes). Throws
+/// std::runtime_error when the file or group is missing.
+SeriesTable read_series_h5(const std::string& path, const std::string& name);
+
 }  // namespace dustlift

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "insitu/gas_cells.hpp"
+#include "insitu/parcel_arrays.hpp"
 #include "insitu/pvd_collection.hpp"
 
 namespace dustlift {
@@ -13,30 +14,6 @@ namespace dustlift {
 /// Writes a vtkRectilinearGrid (.vtr): nodes from x_nodes/y_nodes (z = 0), cell data
 /// density, velocity (3 comp., z = 0), pressure, temperature, mach, alpha_p, vorticity.
 void write_gas_vtr(const GasCellArrays& gas, const std::string& path);
-
-/// A 2-D vector stored as two columns (structure of arrays). Empty: not written.
-struct Vec2Columns {
-  std::span<const double> x, y;
-  bool present() const { return !x.empty(); }
-};
-
-/// Read-only view of parcel arrays, each `count` long (a ParcelSystem adaptor only points
-/// the spans at its own arrays). Optional arrays left empty are omitted from the file.
-struct ParcelArraysView {
-  std::size_t count = 0;
-  Vec2Columns position;                     ///< m (required)
-  Vec2Columns velocity;                     ///< m/s
-  std::span<const double> angular_velocity; ///< rad/s, w_z
-  std::span<const double> temperature;      ///< K
-  std::span<const double> diameter;         ///< m
-  Vec2Columns initial_position;             ///< m
-  Vec2Columns force_contact;                ///< N
-  Vec2Columns force_drag;                   ///< N
-  Vec2Columns force_magnus;                 ///< N
-  Vec2Columns force_pressure;               ///< N (pressure-gradient force)
-  /// Throws std::invalid_argument when a present array is not `count` long.
-  void check_sizes() const;
-};
 
 /// Writes a vtkPolyData (.vtp): one vertex cell per parcel at (x, y, 0), point data
 /// named as the view's members (vectors as 3 components with z = 0).
