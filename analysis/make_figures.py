@@ -1,0 +1,172 @@
+#!/usr/bin/python3
+"""Figures from a dustlift run's ready-to-plot series (PNG, matplotlib Agg).
+
+Usage: /usr/bin/python3 analysis/make_figures.py OUTDIR [--max-curves N]
+
+Reads OUTDIR/series/*.csv (header "name_unit,...", first column the abscissa) and writes
+into OUTDIR/figures/ whatever the present series allow:
+  shock_position.png           x_s(t) with a least-squares line; its slope (the shock
+                               speed) is given in the legend
+  surface_height.png           dust-surface height h(x) at the output times (Fig. 9 style)
+  surface_height_stations.png  h(t) at the station columns
+  forces_<band>.png            band-averaged horizontal and vertical force parts and mean
+                               height against time since shock arrival (Figs. 10-11 style)
+  magnus_inputs_<band>.png     relative, particle and gas rotation (Fig. 12 style)
+A gas-only run has only shock_position. Exits 1 if OUTDIR/series holds no series.
+"""
+import argparse
+import csv
+import glob
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read_series(path):
+    """{header: column array} in file order; None for a file with a header only."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    if len(rows) < 2:
+        return None
+    header = rows[0]
+    data = np.array([[float(v) for v in r] for r in rows[1:] if r], dtype=float)
+    return {name: data[:, k] for k, name in enumerate(header)}
+
+
+def shock_position(series, out):
+    t, x = series["time_s"], series["x_m"]
+    ok = np.isfinite(x)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(t[ok] * 1e3, x[ok] * 1e3, "o", ms=3, label="shock position")
+    if ok.sum() >= 2:
+        speed, intercept = np.polyfit(t[ok], x[ok], 1)
+        tt = np.linspace(t[ok].min(), t[ok].max(), 2)
+        ax.plot(tt * 1e3, (speed * tt + intercept) * 1e3, "-", label="linear fit: %.1f m/s" % speed)
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("shock position x [mm]")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    return save(fig, out, "shock_position.png")
+
+
+def surface_height(series, out, max_curves):
+    t, x, h = series["time_s"], series["x_m"], series["height_m"]
+    times = np.unique(t)
+    if len(times) > max_curves:  # evenly spaced subset, always with the last time
+        times = times[np.unique(np.linspace(0, len(times) - 1, max_curves).round().astype(int))]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    colors = plt.cm.viridis(np.linspace(0, 1, len(times)))
+    for c, tk in zip(colors, times):
+        sel = t == tk
+        order = np.argsort(x[sel])
+        ax.plot(x[sel][order] * 1e3, h[sel][order] * 1e3, color=c, label="t = %.3f ms" % (tk * 1e3))
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("dust surface height [mm]")
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(alpha=0.3)
+    return save(fig, out, "surface_height.png")
+
+
+def surface_stations(series, out):
+    names = list(series)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for name in names[1:]:
+        ax.plot(series[names[0]] * 1e3, series[name] * 1e3, label=name.replace("height_at_x", "x = ").replace("_m", " m"))
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("dust surface height [mm]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return save(fig, out, "surface_height_stations.png")
+
+
+def forces(series, out, band):
+    tau = series["tau_s"] * 1e3
+    fig, axes = plt.subplots(3, 1, figsize=(7, 9), sharex=True)
+    parts = [("drag", "drag"), ("pressure", "pressure gradient"), ("magnus", "Magnus"),
+             ("contact_window", "contact (0.01 ms mean)")]
+    for ax, comp, label in ((axes[0], "x", "horizontal"), (axes[1], "y", "vertical")):
+        for key, name in parts:
+            col = "%s_%s_N" % (key, comp)
+            if col in series and np.isfinite(series[col]).any():
+                ax.plot(tau, series[col], label=name)
+        ax.axhline(0.0, color="k", lw=0.5)
+        ax.set_ylabel("%s force per parcel [N]" % label)
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[2].plot(tau, series["height_m"] * 1e3, "k-")
+    axes[2].set_ylabel("mean height [mm]")
+    axes[2].set_xlabel("time since shock arrival [ms]")
+    axes[2].grid(alpha=0.3)
+    fig.suptitle("band %s" % band)
+    return save(fig, out, "forces_%s.png" % band)
+
+
+def magnus_inputs(series, out, band):
+    cols = [("relative_rotation_rad/s", "relative rotation"), ("particle_rotation_rad/s", "particle rotation"),
+            ("gas_rotation_rad/s", "gas rotation")]
+    present = [(c, n) for c, n in cols if c in series and np.isfinite(series[c]).any()]
+    if not present:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for c, n in present:
+        ax.plot(series["tau_s"] * 1e3, series[c], label=n)
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel("time since shock arrival [ms]")
+    ax.set_ylabel("rotation [rad/s]")
+    ax.set_title("Magnus inputs, band %s" % band)
+    ax.legend()
+    ax.grid(alpha=0.3)
+    return save(fig, out, "magnus_inputs_%s.png" % band)
+
+
+def save(fig, out, name):
+    path = os.path.join(out, name)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    print("wrote", path)
+    return path
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("outdir")
+    parser.add_argument("--max-curves", type=int, default=10, help="surface profiles drawn at most")
+    args = parser.parse_args(argv)
+    series_dir = os.path.join(args.outdir, "series")
+    files = sorted(glob.glob(os.path.join(series_dir, "*.csv")))
+    if not files:
+        print("make_figures.py: no series in %s" % series_dir, file=sys.stderr)
+        return 1
+    out = os.path.join(args.outdir, "figures")
+    os.makedirs(out, exist_ok=True)
+    written = []
+    for path in files:
+        name = os.path.splitext(os.path.basename(path))[0]
+        series = read_series(path)
+        if series is None:
+            print("skipped %s (no rows yet)" % path)
+            continue
+        if name == "shock_position":
+            written.append(shock_position(series, out))
+        elif name == "surface_height":
+            written.append(surface_height(series, out, args.max_curves))
+        elif name == "surface_height_stations":
+            written.append(surface_stations(series, out))
+        elif name.startswith("forces_"):
+            band = name[len("forces_"):]
+            written.append(forces(series, out, band))
+            written.append(magnus_inputs(series, out, band))
+        else:
+            print("skipped %s (no figure for this series)" % path)
+    print("make_figures.py: %d figure(s)" % len([w for w in written if w]))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

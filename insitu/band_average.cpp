@@ -1,0 +1,157 @@
+#include "insitu/band_average.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace dustlift {
+
+void update_arrival_times(double shock_x, double time, std::span<const double> initial_x,
+                          std::span<double> arrival_time) {
+  if (initial_x.size() != arrival_time.size())
+    throw std::invalid_argument("update_arrival_times: size mismatch");
+  if (std::isnan(shock_x)) return;
+  for (std::size_t k = 0; k < initial_x.size(); ++k)
+    if (std::isnan(arrival_time[k]) && initial_x[k] <= shock_x) arrival_time[k] = time;
+}
+
+namespace {
+std::size_t bin_count(double span, double width) {
+  if (!(width > 0.0) || !(span > 0.0))
+    throw std::invalid_argument("BandAverageOptions: need tau_max > tau_min and widths > 0");
+  return static_cast<std::size_t>(std::ceil(span / width - 1e-9));
+}
+
+/// Bin of tau, or npos when outside [tau_min, tau_min + n * width).
+constexpr std::size_t npos = static_cast<std::size_t>(-1);
+std::size_t bin_of(double tau, double tau_min, double width, std::size_t n) {
+  const double s = std::floor((tau - tau_min) / width);
+  if (!(s >= 0.0) || s >= static_cast<double>(n)) return npos;
+  return static_cast<std::size_t>(s);
+}
+}  // namespace
+
+BandForceAccumulator::BandForceAccumulator(Band band, BandAverageOptions options)
+    : band_(std::move(band)), options_(options) {
+  const std::size_t n = bin_count(options_.tau_max - options_.tau_min, options_.bin_width);
+  const std::size_t nw = bin_count(options_.tau_max - options_.tau_min, options_.contact_window);
+  count_.assign(n, 0);
+  for (auto& s : sum_) s.assign(n, 0.0);
+  for (auto& c : quantity_count_) c.assign(n, 0);
+  for (auto& s : window_sum_) s.assign(nw, 0.0);
+  window_count_.assign(nw, 0);
+}
+
+void BandForceAccumulator::add(const BandParcelsView& p, double time) {
+  if (p.initial_position.x.size() != p.count || p.initial_position.y.size() != p.count ||
+      p.arrival_time.size() != p.count || p.y.size() != p.count)
+    throw std::invalid_argument(
+        "BandForceAccumulator: initial_position, y and arrival_time must hold count values");
+  const std::size_t n = count_.size(), nw = window_count_.size();
+  auto accumulate = [&](Quantity q, std::size_t bin, std::span<const double> values,
+                        std::size_t k) {
+    if (values.empty()) return;
+    if (values.size() != p.count)
+      throw std::invalid_argument("BandForceAccumulator: an array is not count long");
+    sum_[q][bin] += values[k];
+    ++quantity_count_[q][bin];
+  };
+  for (std::size_t k = 0; k < p.count; ++k) {
+    if (!band_.contains(p.initial_position.x[k], p.initial_position.y[k])) continue;
+    if (std::isnan(p.arrival_time[k])) continue;
+    const double tau = time - p.arrival_time[k];
+    const std::size_t bin = bin_of(tau, options_.tau_min, options_.bin_width, n);
+    if (bin == npos) continue;
+    ++count_[bin];
+    accumulate(kHeight, bin, p.y, k);
+    accumulate(kContactX, bin, p.force_contact.x, k);
+    accumulate(kContactY, bin, p.force_contact.y, k);
+    accumulate(kDragX, bin, p.force_drag.x, k);
+    accumulate(kDragY, bin, p.force_drag.y, k);
+    accumulate(kMagnusX, bin, p.force_magnus.x, k);
+    accumulate(kMagnusY, bin, p.force_magnus.y, k);
+    accumulate(kPressureX, bin, p.force_pressure.x, k);
+    accumulate(kPressureY, bin, p.force_pressure.y, k);
+    accumulate(kRelativeRotation, bin, p.relative_rotation, k);
+    accumulate(kParticleRotation, bin, p.particle_rotation, k);
+    accumulate(kGasRotation, bin, p.gas_rotation, k);
+    if (p.force_contact.present()) {
+      const std::size_t w = bin_of(tau, options_.tau_min, options_.contact_window, nw);
+      if (w != npos) {
+        window_sum_[0][w] += p.force_contact.x[k];
+        window_sum_[1][w] += p.force_contact.y[k];
+        ++window_count_[w];
+      }
+    }
+  }
+}
+
+double BandForceAccumulator::bin_center(std::size_t bin) const {
+  return options_.tau_min + (static_cast<double>(bin) + 0.5) * options_.bin_width;
+}
+
+double BandForceAccumulator::mean(Quantity q, std::size_t bin) const {
+  const std::size_t c = quantity_count_[q][bin];
+  return c ? sum_[q][bin] / static_cast<double>(c) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double BandForceAccumulator::contact_window_mean(int component, std::size_t bin) const {
+  const std::size_t w = bin_of(bin_center(bin), options_.tau_min, options_.contact_window,
+                               window_count_.size());
+  if (w == npos || window_count_[w] == 0) return std::numeric_limits<double>::quiet_NaN();
+  return window_sum_[static_cast<std::size_t>(component)][w] /
+         static_cast<double>(window_count_[w]);
+}
+
+SeriesTable BandForceAccumulator::table() const {
+  SeriesTable t("forces_" + band_.name,
+                {{"tau", "s"},
+                 {"samples", "1"},
+                 {"height", "m"},
+                 {"contact_x", "N"},
+                 {"contact_y", "N"},
+                 {"drag_x", "N"},
+                 {"drag_y", "N"},
+                 {"magnus_x", "N"},
+                 {"magnus_y", "N"},
+                 {"pressure_x", "N"},
+                 {"pressure_y", "N"},
+                 {"contact_window_x", "N"},
+                 {"contact_window_y", "N"},
+                 {"relative_rotation", "rad/s"},
+                 {"particle_rotation", "rad/s"},
+                 {"gas_rotation", "rad/s"}});
+  std::vector<double> row(t.columns().size());
+  for (std::size_t b = 0; b < bins(); ++b) {
+    if (count_[b] == 0) continue;
+    std::size_t c = 0;
+    row[c++] = bin_center(b);
+    row[c++] = static_cast<double>(count_[b]);
+    for (std::size_t q = kHeight; q <= kPressureY; ++q) row[c++] = mean(Quantity(q), b);
+    row[c++] = contact_window_mean(0, b);
+    row[c++] = contact_window_mean(1, b);
+    for (std::size_t q = kRelativeRotation; q < kQuantityCount; ++q)
+      row[c++] = mean(Quantity(q), b);
+    t.append_row(row);
+  }
+  return t;
+}
+
+BandForceSeries::BandForceSeries(const std::string& output_dir, const std::vector<Band>& bands,
+                                 BandAverageOptions options)
+    : sink_(output_dir) {
+  for (const auto& b : bands) accumulators_.emplace_back(b, options);
+}
+
+void BandForceSeries::add(const BandParcelsView& parcels, double time) {
+  for (auto& a : accumulators_) a.add(parcels, time);
+}
+
+void BandForceSeries::write() const {
+  for (const auto& a : accumulators_) {
+    SeriesTable t = a.table();
+    sink_.write(t);
+  }
+}
+
+}  // namespace dustlift

@@ -1,0 +1,108 @@
+#pragma once
+// Band-averaged force histories aligned to shock arrival (paper Figs. 10 and 12).
+// Parcels are selected by their INITIAL position (a band of the layer); each sample is
+// binned by tau = t - t_arrival, the time since the shock reached that parcel, and the
+// bins hold plain means over every (parcel, sample time) that fell in them. The contact
+// force is spiky (collisions last microseconds), so it is also averaged over coarser
+// windows (0.01 ms by default). Serial, fixed-order sums: reproducible bit for bit.
+#include <array>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "insitu/parcel_arrays.hpp"
+#include "insitu/series_table.hpp"
+
+namespace dustlift {
+
+/// Parcel arrays the band filter reads, each `count` long. Absent force parts or Magnus
+/// inputs (empty spans) give NaN columns.
+struct BandParcelsView {
+  std::size_t count = 0;
+  Vec2Columns initial_position;              ///< m
+  std::span<const double> y;                 ///< m, current height
+  Vec2Columns force_contact, force_drag, force_magnus, force_pressure;  ///< N
+  std::span<const double> arrival_time;      ///< s; NaN: shock not arrived yet (skipped)
+  std::span<const double> relative_rotation; ///< rad/s, Magnus input w_r (DEM convention)
+  std::span<const double> particle_rotation; ///< rad/s, w_p
+  std::span<const double> gas_rotation;      ///< rad/s, gas rotation (half vorticity) at parcel
+};
+
+struct Band {
+  std::string name;  ///< used in the series name forces_<name>
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< m, box of initial positions
+  bool contains(double x0, double y0) const {
+    return x0 >= x_min && x0 < x_max && y0 >= y_min && y0 < y_max;
+  }
+};
+
+struct BandAverageOptions {
+  double tau_min = 0.0;           ///< s, first bin start (negative: before arrival)
+  double tau_max = 1e-3;          ///< s, last bin end
+  double bin_width = 1e-6;        ///< s
+  double contact_window = 1e-5;   ///< s, window of the extra contact-force average
+};
+
+/// Sets arrival_time[k] = time for parcels not yet reached (NaN) whose initial x is at or
+/// behind the shock (initial_x <= shock_x). Call at every output or step with the shock
+/// position filter's result.
+void update_arrival_times(double shock_x, double time, std::span<const double> initial_x,
+                          std::span<double> arrival_time);
+
+class BandForceAccumulator {
+ public:
+  /// Averaged quantities, in column order after tau and samples.
+  enum Quantity : std::size_t {
+    kHeight,
+    kContactX, kContactY, kDragX, kDragY, kMagnusX, kMagnusY, kPressureX, kPressureY,
+    kRelativeRotation, kParticleRotation, kGasRotation,
+    kQuantityCount
+  };
+
+  BandForceAccumulator(Band band, BandAverageOptions options = {});
+
+  /// Adds every parcel of the band that the shock has reached, at simulated time `time`.
+  void add(const BandParcelsView& parcels, double time);
+
+  std::size_t bins() const { return count_.size(); }
+  double bin_center(std::size_t bin) const;
+  /// Number of (parcel, time) samples in a bin.
+  std::size_t samples(std::size_t bin) const { return count_[bin]; }
+  /// Mean of quantity q in a bin (NaN when the bin has no sample of it).
+  double mean(Quantity q, std::size_t bin) const;
+  /// Contact force (component 0 = x, 1 = y) averaged over the window holding the bin centre.
+  double contact_window_mean(int component, std::size_t bin) const;
+
+  /// Series forces_<band>: tau_s, samples_1, height_m, contact_x_N, ..., pressure_y_N,
+  /// contact_window_x_N, contact_window_y_N, relative_rotation_rad/s, particle_rotation_rad/s,
+  /// gas_rotation_rad/s; one row per non-empty bin. A fresh table: SeriesSink rewrites it.
+  SeriesTable table() const;
+  const Band& band() const { return band_; }
+
+ private:
+  Band band_;
+  BandAverageOptions options_;
+  std::vector<std::size_t> count_;
+  std::array<std::vector<double>, kQuantityCount> sum_;
+  std::array<std::vector<std::size_t>, kQuantityCount> quantity_count_;
+  std::array<std::vector<double>, 2> window_sum_;
+  std::vector<std::size_t> window_count_;
+};
+
+/// The bands of one run and their CSV/HDF5 output (series/forces_<band>.csv): the lead's
+/// ParcelSystem observer builds a BandParcelsView and calls add() then write().
+class BandForceSeries {
+ public:
+  BandForceSeries(const std::string& output_dir, const std::vector<Band>& bands,
+                  BandAverageOptions options = {});
+  void add(const BandParcelsView& parcels, double time);
+  void write() const;
+  const std::vector<BandForceAccumulator>& accumulators() const { return accumulators_; }
+
+ private:
+  SeriesSink sink_;
+  std::vector<BandForceAccumulator> accumulators_;
+};
+
+}  // namespace dustlift

@@ -1,0 +1,34 @@
+#pragma once
+// Factories for the in-situ observers. VTK- and HDF5-free: app/ and sim/ include this
+// header only; the implementations live in insitu/*.cpp.
+#include <memory>
+#include <vector>
+
+#include "solver/sim/observer.hpp"
+
+namespace dustlift {
+
+/// Writes OUTDIR/vtk/gas_NNNNNN.vtr at each output and rewrites OUTDIR/gas.pvd
+/// (timestep = simulated time in s). Needs StateView::gas (Mach uses sound_speed).
+std::unique_ptr<Observer> make_vtk_gas_writer();
+
+struct SurfaceHeightOptions {
+  double threshold = 1e-4;              ///< alpha_p level of the surface (paper section 3.2)
+  std::vector<double> stations_x;       ///< m; x of the station columns (may be empty)
+};
+/// Dust-surface height h(x): series surface_height (time_s, x_m, height_m; columns with no
+/// particles skipped) and surface_height_stations (time_s, one height per station, NaN
+/// where no particles).
+std::unique_ptr<Observer> make_surface_height_observer(SurfaceHeightOptions options = {});
+
+struct ShockPositionOptions {
+  double threshold = 0.05;  ///< relative pressure rise that marks the shock
+  double p_ambient = 0.0;   ///< Pa; 0: each row's rightmost (downstream) cell pressure
+  double y_min = 0.0;       ///< m; rows with centre below y_min are ignored
+  bool every_step = false;  ///< sample at every step (cheap) instead of outputs only
+};
+/// Shock position: series shock_position (time_s, x_m), rightmost x over rows with
+/// y >= y_min where p > p_ambient (1 + threshold), interpolated between cell centres.
+std::unique_ptr<Observer> make_shock_position_observer(ShockPositionOptions options = {});
+
+}  // namespace dustlift

@@ -1,0 +1,122 @@
+// Observers that turn gas fields into ready-to-plot series (surface height, shock
+// position). They read only the primitive fields: no GasSolver call, no VTK.
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "insitu/observers.hpp"
+#include "insitu/series_table.hpp"
+#include "insitu/shock_position.hpp"
+#include "insitu/surface_height.hpp"
+#include "insitu/vorticity.hpp"
+
+namespace dustlift {
+namespace {
+
+/// Copies the interior of a field into `out` (x fastest); `transform` maps each value.
+template <class Transform>
+void interior(const Grid2D& grid, const Field2D& f, std::vector<double>& out, Transform transform) {
+  out.resize(grid.interior_cells());
+  for (int j = 0; j < grid.ny(); ++j)
+    for (int i = 0; i < grid.nx(); ++i)
+      out[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] =
+          transform(f(i, j));
+}
+
+void require_grid(const StateView& view, const Field2D* field, const char* who) {
+  if (!view.grid || !field)
+    throw std::invalid_argument(fmt::format("{}: the state view has no grid or field", who));
+}
+
+class SurfaceHeightObserver final : public Observer {
+ public:
+  explicit SurfaceHeightObserver(SurfaceHeightOptions options)
+      : options_(std::move(options)),
+        profile_("surface_height", {{"time", "s"}, {"x", "m"}, {"height", "m"}}),
+        stations_("surface_height_stations", station_columns(options_.stations_x)) {}
+
+  void on_output(const StateView& view) override {
+    require_grid(view, view.primitives.alpha_g, "SurfaceHeightObserver");
+    if (written_ && view.time == last_time_) return;  // on_finish right after an output
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
+    const Grid2D& grid = *view.grid;
+    interior(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
+    const auto xc = interior_centers(grid.x());
+    const auto heights = dust_surface_height(interior_centers(grid.y()), alpha_p_,
+                                             static_cast<std::size_t>(grid.nx()),
+                                             options_.threshold);
+    for (std::size_t i = 0; i < heights.size(); ++i)
+      if (!std::isnan(heights[i])) profile_.append_row(std::vector{view.time, xc[i], heights[i]});
+    std::vector<double> row{view.time};
+    for (double x : options_.stations_x) row.push_back(height_at_station(xc, heights, x));
+    stations_.append_row(row);
+    sink_->write(profile_);
+    if (!options_.stations_x.empty()) sink_->write(stations_);
+    written_ = true;
+    last_time_ = view.time;
+  }
+
+ private:
+  static std::vector<SeriesColumn> station_columns(const std::vector<double>& xs) {
+    std::vector<SeriesColumn> c{{"time", "s"}};
+    for (double x : xs) c.push_back({fmt::format("height_at_x{:.6g}", x), "m"});
+    return c;
+  }
+  SurfaceHeightOptions options_;
+  SeriesTable profile_, stations_;
+  std::unique_ptr<SeriesSink> sink_;
+  std::vector<double> alpha_p_;
+  bool written_ = false;
+  double last_time_ = 0.0;
+};
+
+class ShockPositionObserver final : public Observer {
+ public:
+  explicit ShockPositionObserver(ShockPositionOptions options)
+      : options_(options), table_("shock_position", {{"time", "s"}, {"x", "m"}}) {}
+
+  void on_step(const StateView& view) override {
+    if (options_.every_step) sample(view);
+  }
+  void on_output(const StateView& view) override {
+    sample(view);
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
+    sink_->write(table_);
+  }
+
+ private:
+  void sample(const StateView& view) {
+    require_grid(view, view.primitives.p, "ShockPositionObserver");
+    if (sampled_ && view.time == last_time_) return;
+    const Grid2D& grid = *view.grid;
+    interior(grid, *view.primitives.p, pressure_, [](double p) { return p; });
+    if (x_centers_.empty()) {
+      x_centers_ = interior_centers(grid.x());
+      y_centers_ = interior_centers(grid.y());
+    }
+    const double x = shock_position(x_centers_, y_centers_, pressure_, options_.p_ambient,
+                                    options_.threshold, options_.y_min);
+    table_.append_row(std::vector{view.time, x});
+    sampled_ = true;
+    last_time_ = view.time;
+  }
+  ShockPositionOptions options_;
+  SeriesTable table_;
+  std::unique_ptr<SeriesSink> sink_;
+  std::vector<double> pressure_, x_centers_, y_centers_;
+  bool sampled_ = false;
+  double last_time_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Observer> make_surface_height_observer(SurfaceHeightOptions options) {
+  return std::make_unique<SurfaceHeightObserver>(std::move(options));
+}
+
+std::unique_ptr<Observer> make_shock_position_observer(ShockPositionOptions options) {
+  return std::make_unique<ShockPositionObserver>(options);
+}
+
+}  // namespace dustlift

@@ -1,0 +1,74 @@
+#pragma once
+// A ready-to-plot series: named columns with units, first column the abscissa.
+// SeriesSink writes it to OUTDIR/series/<name>.csv (header "name_unit,...") and to the
+// group /<name> of OUTDIR/series/series.h5 (one 1-D double dataset per column, attribute
+// "units"). VTK-free and HDF5-free header.
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace dustlift {
+
+struct SeriesColumn {
+  std::string name;  ///< e.g. "time"
+  std::string unit;  ///< e.g. "s"; "1" for dimensionless
+};
+
+class SeriesTable {
+ public:
+  SeriesTable(std::string name, std::vector<SeriesColumn> columns);
+
+  const std::string& name() const { return name_; }
+  const std::vector<SeriesColumn>& columns() const { return columns_; }
+  std::size_t rows() const { return data_.empty() ? 0 : data_.front().size(); }
+  const std::vector<double>& column(std::size_t k) const { return data_.at(k); }
+  /// CSV header entry of column k: "<name>_<unit>".
+  std::string header(std::size_t k) const;
+
+  /// Adds one row (one value per column; throws std::invalid_argument otherwise).
+  void append_row(std::span<const double> row);
+  /// Drops every row (for tables recomputed as a whole, e.g. band averages);
+  /// the next SeriesSink::write rewrites the CSV instead of appending.
+  void clear();
+
+  // Bookkeeping for SeriesSink: rows already in the CSV file.
+  std::size_t csv_rows_written() const { return csv_rows_written_; }
+  bool csv_needs_rewrite() const { return csv_needs_rewrite_; }
+  void mark_csv_written(std::size_t rows) {
+    csv_rows_written_ = rows;
+    csv_needs_rewrite_ = false;
+  }
+
+ private:
+  std::string name_;
+  std::vector<SeriesColumn> columns_;
+  std::vector<std::vector<double>> data_;
+  std::size_t csv_rows_written_ = 0;
+  bool csv_needs_rewrite_ = true;  // first write creates the file with its header
+};
+
+/// Writes tables of one run. Call write() at every output: the CSV gets the rows added
+/// since the last call (or is rewritten after clear()), and series.h5 is opened, the
+/// table's group brought up to date (datasets resized and rewritten), flushed and closed,
+/// so a killed run leaves both files readable up to the last output.
+class SeriesSink {
+ public:
+  explicit SeriesSink(std::string output_dir);
+  void write(SeriesTable& table) const;
+  std::string csv_path(const SeriesTable& table) const;
+  std::string h5_path() const;
+
+ private:
+  std::string series_dir_;
+};
+
+/// Replaces the whole group /<table.name()> of an HDF5 file with the table's columns
+/// (creating the file if missing or unreadable). Safe to call repeatedly.
+void write_series_h5(const std::string& path, const SeriesTable& table);
+
+/// Reads group /<name> back (column order and units from its attributes). Throws
+/// std::runtime_error when the file or group is missing.
+SeriesTable read_series_h5(const std::string& path, const std::string& name);
+
+}  // namespace dustlift

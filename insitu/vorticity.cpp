@@ -1,0 +1,73 @@
+#include "insitu/vorticity.hpp"
+
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+namespace dustlift {
+
+ThreePointWeights derivative_weights(double c0, double c1, double c2, double at) {
+  // d/dx of the Lagrange basis polynomials l_k(x) = prod_{m != k} (x - c_m)/(c_k - c_m).
+  const double w0 = ((at - c1) + (at - c2)) / ((c0 - c1) * (c0 - c2));
+  const double w1 = ((at - c0) + (at - c2)) / ((c1 - c0) * (c1 - c2));
+  const double w2 = ((at - c0) + (at - c1)) / ((c2 - c0) * (c2 - c1));
+  return {w0, w1, w2};
+}
+
+namespace {
+
+/// Derivative along one axis of a strided line of n values at index k.
+double line_derivative(std::span<const double> c, const double* f, std::size_t stride,
+                       std::size_t k) {
+  const std::size_t n = c.size();
+  if (n < 2) return 0.0;
+  if (n == 2) return (f[stride] - f[0]) / (c[1] - c[0]);
+  std::size_t first = k == 0 ? 0 : (k == n - 1 ? n - 3 : k - 1);  // one-sided at the ends
+  const ThreePointWeights w = derivative_weights(c[first], c[first + 1], c[first + 2], c[k]);
+  return w.w0 * f[first * stride] + w.w1 * f[(first + 1) * stride] +
+         w.w2 * f[(first + 2) * stride];
+}
+
+}  // namespace
+
+void vorticity_z(std::span<const double> x_centers, std::span<const double> y_centers,
+                 std::span<const double> u, std::span<const double> v, std::span<double> out) {
+  const std::size_t nx = x_centers.size(), ny = y_centers.size();
+  if (u.size() != nx * ny || v.size() != nx * ny || out.size() != nx * ny)
+    throw std::invalid_argument("vorticity_z: u, v and out must hold nx*ny values");
+  for (std::size_t j = 0; j < ny; ++j) {
+    for (std::size_t i = 0; i < nx; ++i) {
+      const double dvdx = line_derivative(x_centers, v.data() + j * nx, 1, i);
+      const double dudy = line_derivative(y_centers, u.data() + i, nx, j);
+      out[i + nx * j] = dvdx - dudy;
+    }
+  }
+}
+
+std::vector<double> interior_centers(const Axis& axis) {
+  std::vector<double> c(static_cast<std::size_t>(axis.cells()));
+  for (int i = 0; i < axis.cells(); ++i) c[static_cast<std::size_t>(i)] = axis.center(i);
+  return c;
+}
+
+namespace {
+std::vector<double> interior_values(const Grid2D& grid, const Field2D& f) {
+  std::vector<double> out(grid.interior_cells());
+  for (int j = 0; j < grid.ny(); ++j)
+    for (int i = 0; i < grid.nx(); ++i)
+      out[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] = f(i, j);
+  return out;
+}
+}  // namespace
+
+std::vector<double> vorticity_z(const Grid2D& grid, const Field2D& u, const Field2D& v) {
+  const auto xc = interior_centers(grid.x());
+  const auto yc = interior_centers(grid.y());
+  const auto ui = interior_values(grid, u);
+  const auto vi = interior_values(grid, v);
+  std::vector<double> out(grid.interior_cells());
+  vorticity_z(xc, yc, ui, vi, out);
+  return out;
+}
+
+}  // namespace dustlift

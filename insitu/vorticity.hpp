@@ -1,0 +1,34 @@
+#pragma once
+// Out-of-plane vorticity w_z = dv/dx - du/dy of a cell-centred velocity field on a
+// rectilinear (possibly stretched) grid. VTK-free: the solver may use it too (Magnus lift).
+#include <span>
+#include <vector>
+
+#include "solver/core/field.hpp"
+#include "solver/core/grid.hpp"
+
+namespace dustlift {
+
+/// Derivative weights at centre k from the three centres (c0, c1, c2) of a quadratic
+/// Lagrange fit; exact for any quadratic, so 2nd order on a stretched axis.
+struct ThreePointWeights {
+  double w0, w1, w2;
+};
+/// Weights for f'(at) given f at c0 < c1 < c2 (at is one of them).
+ThreePointWeights derivative_weights(double c0, double c1, double c2, double at);
+
+/// w_z on the interior cells. `x_centers` (nx) and `y_centers` (ny) are cell centres;
+/// u, v and `out` hold nx*ny interior values, x fastest (index i + nx*j).
+/// Central 3-point differences inside, one-sided 3-point at the boundaries (both 2nd order,
+/// exact for linear and quadratic fields); an axis with 2 cells uses the 2-point slope,
+/// an axis with 1 cell contributes no derivative.
+void vorticity_z(std::span<const double> x_centers, std::span<const double> y_centers,
+                 std::span<const double> u, std::span<const double> v, std::span<double> out);
+
+/// Same on Field2D (interior only; ghosts are not trusted). Returns nx*ny values, x fastest.
+std::vector<double> vorticity_z(const Grid2D& grid, const Field2D& u, const Field2D& v);
+
+/// Interior cell centres of an axis.
+std::vector<double> interior_centers(const Axis& axis);
+
+}  // namespace dustlift

@@ -1,0 +1,82 @@
+// The surface-height and shock-position observers on a synthetic StateView (no GasSolver):
+// rows per output, station columns, no duplicate row when on_finish follows an output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "insitu/observers.hpp"
+#include "insitu/series_table.hpp"
+#include "solver/core/field.hpp"
+
+namespace dustlift {
+namespace {
+
+struct SyntheticState {
+  Grid2D grid{Axis({0.0, 0.01, 0.02, 0.03, 0.04, 0.05}, 2),
+              Axis({0.0, 0.001, 0.002, 0.0035, 0.0055, 0.008}, 2)};
+  Field2D rho{grid, 1.2}, u{grid}, v{grid}, p{grid, 1e5}, T{grid, 300.0}, alpha_g{grid, 1.0};
+  std::filesystem::path dir;
+
+  explicit SyntheticState(const std::string& name)
+      : dir(std::filesystem::temp_directory_path() / ("dustlift_observers_" + name)) {
+    std::filesystem::remove_all(dir);
+  }
+  /// Shock at x_s (p = 2e5 behind it); layer alpha_p = 0.5 in the lowest `layer_cells` rows.
+  void set(double xs, int layer_cells) {
+    for (int j = 0; j < grid.ny(); ++j)
+      for (int i = 0; i < grid.nx(); ++i) {
+        p(i, j) = grid.x().center(i) < xs ? 2e5 : 1e5;
+        alpha_g(i, j) = j < layer_cells && i < 4 ? 0.5 : 1.0;  // column 4 has no particles
+      }
+  }
+  StateView view(double t) const {
+    StateView s;
+    s.grid = &grid;
+    s.primitives = GasPrimitives{&rho, &u, &v, &p, &T, &alpha_g};
+    s.time = t;
+    s.output_dir = dir.string();
+    return s;
+  }
+};
+
+TEST(SeriesObservers, ShockPositionRowPerOutputWithoutDuplicateAtFinish) {
+  SyntheticState s("shock");
+  auto observer = make_shock_position_observer({.threshold = 0.05, .p_ambient = 1e5});
+  s.set(0.012, 2);
+  observer->on_start(s.view(0.0));
+  s.set(0.032, 2);
+  observer->on_output(s.view(1e-5));
+  observer->on_finish(s.view(1e-5));
+  const auto t = read_series_h5((s.dir / "series" / "series.h5").string(), "shock_position");
+  ASSERT_EQ(t.rows(), 2u);
+  // Last high centre 0.015 (then 0.025), level 1.05e5 -> 0.95 of the way to the next centre.
+  EXPECT_NEAR(t.column(1)[0], 0.005 + 0.95 * 0.01, 1e-15);
+  EXPECT_NEAR(t.column(1)[1], 0.025 + 0.95 * 0.01, 1e-15);
+  EXPECT_TRUE(std::filesystem::exists(s.dir / "series" / "shock_position.csv"));
+}
+
+TEST(SeriesObservers, SurfaceHeightProfileSkipsEmptyColumnsAndStationsInterpolate) {
+  SyntheticState s("surface");
+  auto observer = make_surface_height_observer({.threshold = 1e-4, .stations_x = {0.02, 0.045}});
+  s.set(0.0, 2);  // alpha_p = 0.5 in rows 0-1: crossing between centres 0.0015 and 0.00275
+  observer->on_start(s.view(0.0));
+  s.set(0.0, 3);  // rows 0-2: crossing between 0.00275 and 0.0045
+  observer->on_output(s.view(2e-5));
+  observer->on_finish(s.view(2e-5));
+  const std::string h5 = (s.dir / "series" / "series.h5").string();
+  const auto profile = read_series_h5(h5, "surface_height");
+  ASSERT_EQ(profile.rows(), 8u);  // 4 columns with particles x 2 outputs
+  const double s_frac = (0.5 - 1e-4) / 0.5;
+  EXPECT_NEAR(profile.column(2)[0], 0.0015 + s_frac * 0.00125, 1e-15);
+  EXPECT_NEAR(profile.column(2)[7], 0.00275 + s_frac * 0.00175, 1e-15);
+  EXPECT_EQ(profile.column(1)[3], 0.035);
+  const auto stations = read_series_h5(h5, "surface_height_stations");
+  ASSERT_EQ(stations.rows(), 2u);
+  EXPECT_EQ(stations.header(1), "height_at_x0.02_m");
+  EXPECT_NEAR(stations.column(1)[1], 0.00275 + s_frac * 0.00175, 1e-15);
+  EXPECT_TRUE(std::isnan(stations.column(2)[1]));  // between a full and an empty column
+}
+
+}  // namespace
+}  // namespace dustlift

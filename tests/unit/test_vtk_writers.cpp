@@ -1,0 +1,250 @@
+// The .vtr/.vtp writers: files load with VTK's XML readers, hold every named array with
+// the right tuple and component counts, values round-trip; the .pvd lists files and times.
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkRectilinearGrid.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLRectilinearGridReader.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "insitu/gas_cells.hpp"
+#include "insitu/vtk_writers.hpp"
+#include "solver/core/field.hpp"
+#include "solver/core/grid.hpp"
+
+namespace dustlift {
+namespace {
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_test_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Synthetic gas state on a stretched 7 x 5 grid with distinct values per cell and array.
+GasCellArrays synthetic_gas() {
+  GasCellArrays g;
+  g.x_nodes = {0.0, 0.001, 0.0025, 0.0045, 0.007, 0.01, 0.014, 0.019};
+  g.y_nodes = {0.0, 0.0005, 0.0011, 0.0018, 0.0026, 0.0035};
+  g.resize(g.nx(), g.ny());
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    const double s = static_cast<double>(k);
+    g.density[k] = 1.2 + 0.01 * s;
+    g.velocity_x[k] = 100.0 + s;
+    g.velocity_y[k] = -3.0 * s;
+    g.pressure[k] = 101325.0 + 17.0 * s;
+    g.temperature[k] = 300.0 + 0.5 * s;
+    g.mach[k] = 0.001 * s;
+    g.alpha_p[k] = s / 100.0;
+    g.vorticity[k] = 1e4 * std::sin(s);
+  }
+  return g;
+}
+
+void expect_array(vtkDataArray* array, const std::vector<double>& expected, const char* name) {
+  ASSERT_NE(array, nullptr) << "missing array " << name;
+  ASSERT_EQ(array->GetNumberOfComponents(), 1) << name;
+  ASSERT_EQ(array->GetNumberOfTuples(), static_cast<vtkIdType>(expected.size())) << name;
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    EXPECT_EQ(array->GetComponent(static_cast<vtkIdType>(k), 0), expected[k]) << name << " " << k;
+}
+
+void expect_vector(vtkDataArray* array, const std::vector<double>& x, const std::vector<double>& y,
+                   const char* name) {
+  ASSERT_NE(array, nullptr) << "missing array " << name;
+  ASSERT_EQ(array->GetNumberOfComponents(), 3) << name;
+  ASSERT_EQ(array->GetNumberOfTuples(), static_cast<vtkIdType>(x.size())) << name;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const auto id = static_cast<vtkIdType>(k);
+    EXPECT_EQ(array->GetComponent(id, 0), x[k]) << name << " " << k;
+    EXPECT_EQ(array->GetComponent(id, 1), y[k]) << name << " " << k;
+    EXPECT_EQ(array->GetComponent(id, 2), 0.0) << name << " " << k;
+  }
+}
+
+TEST(VtkGasWriter, RectilinearGridRoundTripsEveryArray) {
+  const auto dir = fresh_dir("vtr");
+  const GasCellArrays gas = synthetic_gas();
+  const auto path = (dir / "gas.vtr").string();
+  write_gas_vtr(gas, path);
+  // Inline binary + zlib, not appended (ParaView 5.11 reads appended data as empty).
+  const std::string text = read_text(path);
+  EXPECT_NE(text.find("compressor=\"vtkZLibDataCompressor\""), std::string::npos);
+  EXPECT_NE(text.find("format=\"binary\""), std::string::npos);
+  EXPECT_EQ(text.find("AppendedData"), std::string::npos);
+
+  vtkNew<vtkXMLRectilinearGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkRectilinearGrid* grid = reader->GetOutput();
+  ASSERT_EQ(grid->GetNumberOfCells(), 35);
+  ASSERT_EQ(grid->GetNumberOfPoints(), 8 * 6);
+  int dims[3];
+  grid->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 8);
+  EXPECT_EQ(dims[1], 6);
+  EXPECT_EQ(dims[2], 1);
+  expect_array(grid->GetXCoordinates(), gas.x_nodes, "x nodes");
+  expect_array(grid->GetYCoordinates(), gas.y_nodes, "y nodes");
+  vtkCellData* cd = grid->GetCellData();
+  EXPECT_EQ(cd->GetNumberOfArrays(), 7);
+  expect_array(cd->GetArray("density"), gas.density, "density");
+  expect_vector(cd->GetArray("velocity"), gas.velocity_x, gas.velocity_y, "velocity");
+  expect_array(cd->GetArray("pressure"), gas.pressure, "pressure");
+  expect_array(cd->GetArray("temperature"), gas.temperature, "temperature");
+  expect_array(cd->GetArray("mach"), gas.mach, "mach");
+  expect_array(cd->GetArray("alpha_p"), gas.alpha_p, "alpha_p");
+  expect_array(cd->GetArray("vorticity"), gas.vorticity, "vorticity");
+  // Cell (i, j) = (3, 2) is VTK cell 3 + 7*2 and lies between the matching nodes.
+  double bounds[6];
+  grid->GetCell(3 + 7 * 2)->GetBounds(bounds);
+  EXPECT_EQ(bounds[0], gas.x_nodes[3]);
+  EXPECT_EQ(bounds[1], gas.x_nodes[4]);
+  EXPECT_EQ(bounds[2], gas.y_nodes[2]);
+  EXPECT_EQ(bounds[3], gas.y_nodes[3]);
+}
+
+TEST(VtkGasWriter, MismatchedArrayIsRejected) {
+  GasCellArrays gas = synthetic_gas();
+  gas.pressure.pop_back();
+  EXPECT_THROW(write_gas_vtr(gas, (fresh_dir("bad") / "x.vtr").string()), std::invalid_argument);
+}
+
+TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
+  const Grid2D grid(Axis({0.0, 0.1, 0.25, 0.45, 0.7}, 2), Axis({0.0, 0.05, 0.12, 0.2}, 2));
+  Field2D rho(grid, 1.1), u(grid), v(grid), p(grid, 1e5), T(grid, 290.0), ag(grid, 1.0);
+  for (int j = 0; j < grid.ny(); ++j)
+    for (int i = 0; i < grid.nx(); ++i) {
+      u(i, j) = 30.0 + 2.0 * grid.y().center(j);  // du/dy = 2
+      v(i, j) = 40.0 + 5.0 * grid.x().center(i);  // dv/dx = 5
+      ag(i, j) = 1.0 - 0.01 * (i + 10 * j);
+    }
+  u(-1, 0) = 1e9;  // ghosts must not leak into the output
+  const GasPrimitives prims{&rho, &u, &v, &p, &T, &ag};
+  GasCellArrays out;
+  gather_gas_cells(grid, prims, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
+  ASSERT_EQ(out.nx(), 4u);
+  ASSERT_EQ(out.ny(), 3u);
+  EXPECT_EQ(out.x_nodes, grid.x().interior_faces());
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const std::size_t k = static_cast<std::size_t>(i + 4 * j);
+      EXPECT_NEAR(out.mach[k], std::hypot(u(i, j), v(i, j)) / (340.0 + i + 2.0 * j), 1e-15);
+      EXPECT_NEAR(out.alpha_p[k], 0.01 * (i + 10 * j), 1e-15);
+      EXPECT_NEAR(out.vorticity[k], 5.0 - 2.0, 1e-11);
+      EXPECT_EQ(out.velocity_x[k], u(i, j));
+    }
+}
+
+TEST(VtkParcelWriter, PolyDataRoundTripsEveryArray) {
+  const std::size_t n = 11;
+  std::vector<std::vector<double>> a(22, std::vector<double>(n));
+  for (std::size_t c = 0; c < a.size(); ++c)
+    for (std::size_t k = 0; k < n; ++k) a[c][k] = 1e-3 * static_cast<double>(c * 100 + k) + 0.5;
+  ParcelArraysView view;
+  view.count = n;
+  view.position = {a[0], a[1]};
+  view.velocity = {a[2], a[3]};
+  view.angular_velocity = a[4];
+  view.temperature = a[5];
+  view.diameter = a[6];
+  view.initial_position = {a[7], a[8]};
+  view.force_contact = {a[9], a[10]};
+  view.force_drag = {a[11], a[12]};
+  view.force_magnus = {a[13], a[14]};
+  view.force_pressure = {a[15], a[16]};
+  const auto path = (fresh_dir("vtp") / "p.vtp").string();
+  write_parcels_vtp(view, path);
+
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  ASSERT_EQ(poly->GetNumberOfPoints(), static_cast<vtkIdType>(n));
+  ASSERT_EQ(poly->GetNumberOfVerts(), static_cast<vtkIdType>(n));
+  ASSERT_EQ(poly->GetNumberOfCells(), static_cast<vtkIdType>(n));
+  for (std::size_t k = 0; k < n; ++k) {
+    double xyz[3];
+    poly->GetPoint(static_cast<vtkIdType>(k), xyz);
+    EXPECT_EQ(xyz[0], a[0][k]);
+    EXPECT_EQ(xyz[1], a[1][k]);
+    EXPECT_EQ(xyz[2], 0.0);
+  }
+  vtkPointData* pd = poly->GetPointData();
+  EXPECT_EQ(pd->GetNumberOfArrays(), 9);
+  expect_vector(pd->GetArray("velocity"), a[2], a[3], "velocity");
+  expect_array(pd->GetArray("angular_velocity"), a[4], "angular_velocity");
+  expect_array(pd->GetArray("temperature"), a[5], "temperature");
+  expect_array(pd->GetArray("diameter"), a[6], "diameter");
+  expect_vector(pd->GetArray("initial_position"), a[7], a[8], "initial_position");
+  expect_vector(pd->GetArray("force_contact"), a[9], a[10], "force_contact");
+  expect_vector(pd->GetArray("force_drag"), a[11], a[12], "force_drag");
+  expect_vector(pd->GetArray("force_magnus"), a[13], a[14], "force_magnus");
+  expect_vector(pd->GetArray("force_pressure"), a[15], a[16], "force_pressure");
+}
+
+TEST(VtkParcelWriter, OptionalArraysAreOmittedAndWrongLengthsRejected) {
+  std::vector<double> x{0.1, 0.2, 0.3}, y{0.0, 0.01, 0.02}, d{1e-4, 1e-4, 1e-4};
+  ParcelArraysView view;
+  view.count = 3;
+  view.position = {x, y};
+  view.diameter = d;
+  const auto path = (fresh_dir("vtp_min") / "p.vtp").string();
+  write_parcels_vtp(view, path);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 3);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNumberOfArrays(), 1);
+  std::vector<double> short_t{300.0};
+  view.temperature = short_t;
+  EXPECT_THROW(write_parcels_vtp(view, path), std::invalid_argument);
+}
+
+TEST(PvdCollection, ListsEveryFileWithItsTimeAndReplacesARepeatedTime) {
+  const auto dir = fresh_dir("pvd");
+  std::vector<double> x{0.1, 0.2}, y{0.0, 0.01};
+  ParcelArraysView view;
+  view.count = 2;
+  view.position = {x, y};
+  ParcelSeriesWriter writer(dir.string());
+  writer.write(view, 0.0);
+  writer.write(view, 2.5e-5);
+  writer.write(view, 5.0e-5);
+  writer.write(view, 5.0e-5);  // on_finish right after the last output: same file again
+  const std::string text = read_text(dir / "parcels.pvd");
+  const std::regex entry("<DataSet timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"/>");
+  std::vector<std::pair<double, std::string>> found;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator();
+       ++it)
+    found.emplace_back(std::stod((*it)[1]), (*it)[2]);
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_EQ(found[0], std::make_pair(0.0, std::string("vtk/parcels_000000.vtp")));
+  EXPECT_EQ(found[1], std::make_pair(2.5e-5, std::string("vtk/parcels_000001.vtp")));
+  EXPECT_EQ(found[2], std::make_pair(5.0e-5, std::string("vtk/parcels_000002.vtp")));
+  for (const auto& f : found) EXPECT_TRUE(std::filesystem::exists(dir / f.second)) << f.second;
+  EXPECT_FALSE(std::filesystem::exists(dir / "vtk/parcels_000003.vtp"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "parcels.pvd.tmp"));
+  EXPECT_NE(text.find("type=\"Collection\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dustlift
