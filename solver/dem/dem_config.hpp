@@ -1,11 +1,72 @@
 #pragma once
 // Settings of the DEM parcel system, as resolved from a scene (SI units).
-// Owned by the DEM module; parsed in solver/scene/parse_particles.cpp.
+// Owned by the DEM module; parsed in solver/scene/parse_particles.cpp, where every
+// default below is also written into the resolved scene. Paper values: Table 2 and
+// physics-reference.md §3.6–§4; the garbled or missing items are documented in docs/dem.md.
+#include <cstdint>
+#include <limits>
 
 namespace dustlift {
 
+/// How the layer generator places parcels in the layer rectangle.
+enum class LayerArrangement {
+  Lattice,          ///< rectangular lattice, parcels at the site centres
+  JitteredLattice,  ///< same lattice, each parcel moved randomly inside its free play
+};
+
+/// Linear spring–dashpot contact law (Table 1), per REAL particle (§3.7).
+struct ContactParams {
+  double k_n = 5e4;      ///< N/m, normal spring
+  double k_t = 100.0;    ///< N/m, tangential spring (paper's "k_n/k_t = 0.002" read as k_t/k_n)
+  double damping = 1e-4; ///< N s/m, dashpot h, same normal and tangential (paper)
+  /// Coulomb limit |F_t| <= mu |F_n|; infinity switches the limit off (the paper's Table 1).
+  double friction = 0.5;
+};
+
+/// The rectangle the generator fills with parcels.
+struct LayerConfig {
+  double x_min = 0.0, x_max = 0.4;       ///< m
+  double y_min = -0.002, y_max = 0.0;    ///< m (surface at y = 0, floor at -2 mm)
+  double volume_fraction = 0.59;         ///< alpha_p; the parcels' areal fraction equals it
+  std::uint64_t seed = 1;
+  LayerArrangement arrangement = LayerArrangement::JitteredLattice;
+  bool settle = false;                   ///< let the layer settle under gravity before t = 0
+};
+
+/// The region the neighbour cells cover and its walls (axis-aligned planes at its edges).
+/// Parcels may leave the region; they are then binned into its edge cells (correct, slower).
+struct DemDomain {
+  double x_min = 0.0, x_max = 0.4;       ///< m
+  double y_min = -0.002, y_max = 0.02;   ///< m
+  bool wall_bottom = true;               ///< the floor
+  bool wall_top = false;
+  bool wall_left = false;
+  bool wall_right = false;
+  bool periodic_x = false;               ///< x_min and x_max identified (no left/right walls)
+};
+
 struct DemConfig {
   bool enabled = false;  ///< false: a gas-only scene, no parcel code runs
+
+  // Real particles (Table 2).
+  double particle_diameter = 100e-6;     ///< m
+  double density = 980.0;                ///< kg/m^3
+  double heat_capacity = 1200.0;         ///< J/(kg K)
+  double initial_temperature = 300.0;    ///< K
+
+  // Coarse graining (eq. 11, §4): parcel diameter n_xy d; real particles per parcel per
+  // metre of depth n_i = n_xy^2 n_z. Zero means derived from the layer: alpha_p A / (N V_p).
+  double parcel_diameter = 100e-6;       ///< m
+  double real_per_parcel = 0.0;          ///< 1/m (per metre of depth); 0: derived
+
+  LayerConfig layer;
+  ContactParams contact;                 ///< parcel–parcel
+  ContactParams wall_contact;            ///< parcel–wall (defaults to `contact`)
+  DemDomain domain;
+
+  double courant = 0.1;                  ///< nu_DEM of eq. (18): dt = nu sqrt(m / max(k_n, k_t))
+  double gravity_x = 0.0, gravity_y = 0.0;  ///< m/s^2; the paper has no gravity (eq. 5)
+  double skin = 0.1;                     ///< neighbour-list skin, in parcel diameters
 };
 
 }  // namespace dustlift

@@ -1,10 +1,112 @@
-// [particles]: the DEM parcel system (owned by the DEM module).
+// [particles]: the DEM parcel system (owned by the DEM module). Defaults are the paper's
+// (Table 2, physics-reference.md §3.7, §4); choices where the paper is silent or garbled
+// are explained in docs/dem.md.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "solver/dem/coarse_graining.hpp"
+#include "solver/dem/layer_generator.hpp"
 #include "solver/scene/parse_sections.hpp"
 
 namespace dustlift::scene_detail {
+namespace {
+
+/// [particles.contact] or [particles.wall_contact]; `fallback` gives the defaults.
+ContactParams parse_contact(TableReader t, const ContactParams& fallback) {
+  ContactParams c;
+  c.k_n = t.number("k_n", fallback.k_n, Range::positive());
+  c.k_t = t.number("k_t", fallback.k_t, Range::non_negative());
+  c.damping = t.number("damping", fallback.damping, Range::non_negative());
+  const bool coulomb = t.boolean("coulomb", std::isfinite(fallback.friction));
+  if (coulomb) {
+    c.friction = t.number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5,
+                          Range::non_negative());
+  } else {
+    if (t.has("friction")) t.fail("friction", "only used with coulomb = true");
+    c.friction = std::numeric_limits<double>::infinity();
+  }
+  t.finish();
+  return c;
+}
+
+}  // namespace
 
 void parse_particles(TableReader t, DemConfig& dem) {
-  dem.enabled = t.present();
+  dem.enabled = t.boolean("enabled", t.present());
+  if (!dem.enabled) {
+    t.finish();
+    return;
+  }
+  dem.particle_diameter = t.number("diameter", dem.particle_diameter, Range::positive());
+  dem.density = t.number("density", dem.density, Range::positive());
+  dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
+  dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
+  dem.parcel_diameter = t.number("parcel_diameter", dem.particle_diameter, Range::positive());
+  if (dem.parcel_diameter < dem.particle_diameter) {
+    t.fail("parcel_diameter", "must be at least the particle diameter (n_xy >= 1, eq. 11)");
+  }
+
+  TableReader lt = t.table("layer");
+  LayerConfig& L = dem.layer;
+  L.x_min = lt.number("x_min", L.x_min);
+  L.x_max = lt.number("x_max", L.x_max);
+  if (!(L.x_max > L.x_min)) lt.fail("x_max", "must be greater than x_min");
+  L.y_min = lt.number("y_min", L.y_min);
+  L.y_max = lt.number("y_max", L.y_max);
+  if (!(L.y_max > L.y_min)) lt.fail("y_max", "must be greater than y_min");
+  // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattice needs < ~0.78.
+  L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
+  L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+  const auto arr = lt.choice("arrangement", "jittered_lattice", {"jittered_lattice", "lattice"});
+  L.arrangement = arr == "lattice" ? LayerArrangement::Lattice : LayerArrangement::JitteredLattice;
+  L.settle = lt.boolean("settle", L.settle);
+  LayerLattice lattice;
+  try {
+    lattice = plan_layer_lattice(L, dem.parcel_diameter);
+  } catch (const std::invalid_argument& e) {
+    lt.fail("volume_fraction", e.what());
+  }
+  lt.finish();
+
+  // Real particles per parcel per metre of depth (§4): derived so that the 3-D volume
+  // fraction of the layer equals volume_fraction (15,024 /m for the paper's layer).
+  const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
+  const double derived = derived_real_per_parcel(L.volume_fraction, area,
+                                                 static_cast<double>(lattice.n_parcels),
+                                                 dem.particle_diameter);
+  dem.real_per_parcel = t.number("real_per_parcel", derived, Range::positive());
+
+  dem.contact = parse_contact(t.table("contact"), dem.contact);
+  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact);
+
+  TableReader dt = t.table("domain");
+  DemDomain& D = dem.domain;
+  D.x_min = dt.number("x_min", L.x_min);
+  D.x_max = dt.number("x_max", L.x_max);
+  if (!(D.x_max > D.x_min)) dt.fail("x_max", "must be greater than x_min");
+  D.y_min = dt.number("y_min", L.y_min);
+  D.y_max = dt.number("y_max", L.y_max + 0.02);
+  if (!(D.y_max > D.y_min)) dt.fail("y_max", "must be greater than y_min");
+  D.wall_bottom = dt.boolean("bottom_wall", true);
+  D.wall_top = dt.boolean("top_wall", false);
+  D.periodic_x = dt.boolean("periodic_x", false);
+  D.wall_left = dt.boolean("left_wall", false);
+  D.wall_right = dt.boolean("right_wall", false);
+  if (D.periodic_x && (D.wall_left || D.wall_right)) {
+    dt.fail(D.wall_left ? "left_wall" : "right_wall", "no side walls with periodic_x = true");
+  }
+  if (L.x_min < D.x_min || L.x_max > D.x_max || L.y_min < D.y_min || L.y_max > D.y_max) {
+    dt.fail("x_min", "the domain must contain the layer rectangle");
+  }
+  dt.finish();
+
+  dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));
+  dem.skin = t.number("skin", dem.skin, Range::open_closed(0.0, 1.0));
+  const bool gravity = t.boolean("gravity", false);
+  const double g = t.number("g", 9.81, Range::non_negative());
+  dem.gravity_x = 0.0;
+  dem.gravity_y = gravity ? -g : 0.0;
   t.finish();
 }
 

@@ -1,0 +1,80 @@
+// DEM throughput on the reference setup (docs/dem.md, "Benchmark"):
+// 60,000 parcels of 100 um (rho 980, areal fraction 0.589) filling a box 400 mm x 2 mm,
+// periodic in x, walls at y = 0 and 2 mm, every parcel at 1 m/s in a random direction;
+// k_n = 5e4 N/m, k_t = 2/7 k_n, Coulomb friction 0.5, normal restitution 0.9,
+// dt = 0.1 sqrt(m/k_n); 20,000 timed steps (DUSTLIFT_BENCH_STEPS overrides, for profiling).
+// Counter: particle-steps per second (wall clock), 1 and 2 OpenMP threads.
+//   cmake --build build/release --target bench_dem_layer
+//   ./build/release/bench/bench_dem_layer --benchmark_repetitions=3
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "solver/dem/coarse_graining.hpp"
+#include "solver/dem/contact_law.hpp"
+#include "solver/dem/layer_generator.hpp"
+#include "solver/dem/parcel_system.hpp"
+
+using namespace dustlift;
+
+namespace {
+
+ParcelSystem reference_setup() {
+  constexpr double d = 100e-6, rho = 980.0, k_n = 5e4;
+  const double m = rho * sphere_volume(d);
+  DemConfig c;
+  c.enabled = true;
+  c.particle_diameter = c.parcel_diameter = d;
+  c.density = rho;
+  const double area = 0.4 * 0.002;
+  // Exactly 60,000 parcels: areal fraction 60,000 pi d^2 / 4 / area = 0.589.
+  c.layer = LayerConfig{0.0, 0.4, 0.0, 0.002, 60000.0 * disc_area(d) / area, 1,
+                        LayerArrangement::JitteredLattice, false};
+  c.real_per_parcel = 1.0;  // plain DEM: one particle per parcel (no effect on the dynamics)
+  c.contact = ContactParams{k_n, 2.0 / 7.0 * k_n, damping_for_restitution(m / 2, k_n, 0.9), 0.5};
+  c.wall_contact = c.contact;
+  c.domain = DemDomain{0.0, 0.4, 0.0, 0.002, true, true, false, false, true};
+  c.courant = 0.1;  // dt = 0.1 sqrt(m / k_n), k_n > k_t
+  ParcelSystem s = make_layer_system(c);
+  std::uint64_t seed = 2024;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double a = 2.0 * std::numbers::pi * uniform_from_seed(seed);
+    s.vx[i] = std::cos(a);
+    s.vy[i] = std::sin(a);
+  }
+  return s;
+}
+
+int timed_steps() {
+  const char* env = std::getenv("DUSTLIFT_BENCH_STEPS");
+  return env != nullptr ? std::atoi(env) : 20000;
+}
+
+void BM_DemReferenceLayer(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  const int steps = timed_steps();
+  long long particle_steps = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    ParcelSystem s = reference_setup();
+    const double dt = s.stable_time_step();
+    s.step(dt);  // first neighbour build outside the timing
+    state.ResumeTiming();
+    for (int n = 0; n < steps; ++n) s.step(dt);
+    particle_steps += static_cast<long long>(s.size()) * steps;
+    state.counters["parcels"] = static_cast<double>(s.size());
+    state.counters["rebuilds"] = static_cast<double>(s.neighbour_rebuilds());
+    state.counters["contacts_end"] = static_cast<double>(s.contact_pair_count());
+  }
+  state.counters["particle_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(particle_steps), benchmark::Counter::kIsRate);
+}
+
+}  // namespace
+
+BENCHMARK(BM_DemReferenceLayer)->Arg(1)->Arg(2)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+
+BENCHMARK_MAIN();

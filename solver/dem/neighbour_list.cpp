@@ -1,0 +1,166 @@
+// Cell sort and Verlet neighbour list of the ParcelSystem.
+// Parcels are re-sorted by cell (stable counting sort) at every rebuild, so neighbours
+// are close in memory; the list keeps every parcel within r_i + r_j + skin, and is
+// rebuilt when some parcel has moved more than skin/2 since the last build. The
+// tangential history of each pair is carried over by matching partner ids.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "solver/dem/parcel_system.hpp"
+
+namespace dustlift {
+namespace {
+
+/// out[k] = in[order[k]] for one array, using `scratch` (same element type) as buffer.
+template <class T>
+void permute(std::vector<T>& v, const std::vector<std::int32_t>& order, std::vector<T>& scratch) {
+  const std::size_t n = order.size();
+  scratch.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t k = 0; k < n; ++k) scratch[k] = v[order[k]];
+  v.swap(scratch);
+}
+
+}  // namespace
+
+void ParcelSystem::sort_by_cell() {
+  const std::size_t n = size();
+  const DemDomain& d = cfg_.domain;
+  // Cells at least as wide as the largest cutoff so that all candidates lie in the 3x3 block.
+  double d_max = 0.0;
+  for (double di : diameter) d_max = std::max(d_max, di);
+  const double cutoff = d_max + skin_;
+  cells_x_ = std::max(1, static_cast<int>(std::floor(length_x_ / cutoff)));
+  cells_y_ = std::max(1, static_cast<int>(std::floor((d.y_max - d.y_min) / cutoff)));
+  if (d.periodic_x && cells_x_ < 3) {
+    throw std::invalid_argument("ParcelSystem: periodic x needs a domain at least 3 cutoffs long");
+  }
+  cell_dx_ = length_x_ / cells_x_;
+  cell_dy_ = (d.y_max - d.y_min) / cells_y_;
+
+  if (d.periodic_x) {
+    // Wrap into [x_min, x_max): positions stay unwrapped between rebuilds (images are fixed).
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double shift = std::floor((x[i] - d.x_min) / length_x_) * length_x_;
+      x[i] -= shift;
+      if (x[i] >= d.x_max) x[i] -= length_x_;  // round-off at the edge
+    }
+  }
+  cell_of_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    // Clamping keeps parcels outside the domain correct: it is monotone and contracts.
+    const int cx = std::clamp(static_cast<int>(std::floor((x[i] - d.x_min) / cell_dx_)), 0, cells_x_ - 1);
+    const int cy = std::clamp(static_cast<int>(std::floor((y[i] - d.y_min) / cell_dy_)), 0, cells_y_ - 1);
+    cell_of_[i] = cy * cells_x_ + cx;
+  }
+  const std::size_t n_cells = static_cast<std::size_t>(cells_x_) * cells_y_;
+  cell_start_.assign(n_cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
+  for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  order_.resize(n);
+  scratch_i_.assign(cell_start_.begin(), cell_start_.end() - 1);  // fill cursors
+  for (std::size_t i = 0; i < n; ++i) order_[scratch_i_[cell_of_[i]]++] = static_cast<std::int32_t>(i);
+
+  for (auto* v : {&x, &y, &vx, &vy, &omega, &temperature, &diameter, &radius, &mass, &inertia,
+                  &n_real, &x_initial, &y_initial, &contact_fx, &contact_fy, &contact_torque,
+                  &drag_fx, &drag_fy, &magnus_fx, &magnus_fy, &pressure_fx, &pressure_fy,
+                  &fluid_torque, &heat_rate, &inv_mass_real_, &inv_inertia_real_}) {
+    permute(*v, order_, scratch_d_);
+  }
+  permute(id, order_, scratch_i_);
+  scratch_d_.resize(n * kWallCount);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int w = 0; w < kWallCount; ++w) scratch_d_[k * kWallCount + w] = wall_delta[order_[k] * kWallCount + w];
+  }
+  wall_delta.swap(scratch_d_);
+  permute(cell_of_, order_, scratch_i_);
+}
+
+void ParcelSystem::rebuild_neighbours() {
+  const std::size_t n = size();
+  // Keep the old list's history keyed by partner id (ids survive the re-sort).
+  const bool had_list = nbr_offset.size() == n + 1;
+  if (had_list) {
+    old_offset_.swap(nbr_offset);
+    old_delta_.swap(nbr_delta);
+    old_partner_id_.resize(nbr_index.size());
+    for (std::size_t k = 0; k < nbr_index.size(); ++k) old_partner_id_[k] = id[nbr_index[k]];
+  }
+  sort_by_cell();  // order_[new] = old
+
+  const DemDomain& d = cfg_.domain;
+  const bool periodic = d.periodic_x;
+  const double skin = skin_;
+  // Visits the candidates of parcel i in a fixed order (rows up, columns left to right,
+  // parcels in cell order) and calls f(j, image) for each within r_i + r_j + skin.
+  auto for_each_candidate = [&](std::size_t i, auto&& f) {
+    const int c = cell_of_[i];
+    const int cx = c % cells_x_, cy = c / cells_x_;
+    for (int dy = -1; dy <= 1; ++dy) {
+      const int ry = cy + dy;
+      if (ry < 0 || ry >= cells_y_) continue;
+      for (int dx = -1; dx <= 1; ++dx) {
+        int rx = cx + dx;
+        int image = 0;
+        if (rx < 0 || rx >= cells_x_) {
+          if (!periodic) continue;
+          image = rx < 0 ? -1 : 1;
+          rx -= image * cells_x_;
+        }
+        const int cell = ry * cells_x_ + rx;
+        for (std::int32_t j = cell_start_[cell]; j < cell_start_[cell + 1]; ++j) {
+          if (static_cast<std::size_t>(j) == i) continue;
+          const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
+          const double reach = radius[i] + radius[j] + skin;
+          if (ddx * ddx + ddy * ddy < reach * reach) f(j, image);
+        }
+      }
+    }
+  };
+
+  nbr_offset.resize(n + 1);
+  nbr_offset[0] = 0;
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t count = 0;
+    for_each_candidate(i, [&](std::int32_t, int) { ++count; });
+    nbr_offset[i + 1] = count;
+  }
+  for (std::size_t i = 0; i < n; ++i) nbr_offset[i + 1] += nbr_offset[i];
+  const std::size_t slots = static_cast<std::size_t>(nbr_offset[n]);
+  nbr_index.resize(slots);
+  nbr_image.resize(slots);
+  nbr_delta.resize(slots);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t k = nbr_offset[i];
+    for_each_candidate(i, [&](std::int32_t j, int image) {
+      nbr_index[k] = j;
+      nbr_image[k] = static_cast<std::int8_t>(image);
+      nbr_delta[k] = 0.0;
+      ++k;
+    });
+    if (!had_list) continue;
+    // Carry over the history of pairs that were listed before.
+    const std::int32_t o = order_[i];
+    for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
+      const std::int32_t pid = id[nbr_index[s]];
+      for (std::int32_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
+        if (old_partner_id_[q] == pid) {
+          nbr_delta[s] = old_delta_[q];
+          break;
+        }
+      }
+    }
+  }
+  x_build_ = x;  // same size: no allocation
+  y_build_ = y;
+  needs_rebuild_ = false;
+  ++rebuilds_;
+}
+
+}  // namespace dustlift

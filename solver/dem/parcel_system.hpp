@@ -1,0 +1,159 @@
+#pragma once
+// Coarse-grained DEM parcels (paper eqs. 5–6, 11, 18; physics-reference.md §3.6–§4) as
+// structure-of-arrays, with a cell-sorted Verlet neighbour list that carries the
+// per-pair tangential history, axis-aligned walls, optional periodicity in x, and
+// symplectic Euler sub-steps.
+//
+// Units: 2-D, per metre of depth. A parcel stands for n_real real particles (per metre);
+// its mass and inertia are the sums over them. Every force part stored here is per REAL
+// particle (the parcel's total is n_real times it): eq. (5) divided by n_i, which is how
+// the paper integrates parcels (acceleration = real-particle force / real-particle mass).
+//
+// Determinism: every parcel gathers its own contacts in neighbour-list order (each pair is
+// evaluated from both sides, bitwise symmetrically); no atomics, no reductions other than
+// max. Results are identical for any OpenMP thread count.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "solver/dem/dem_config.hpp"
+
+namespace dustlift {
+
+/// Wall slots of the per-parcel wall history, in this order.
+enum class Wall : int { Bottom = 0, Top = 1, Left = 2, Right = 3, Count = 4 };
+inline constexpr int kWallCount = static_cast<int>(Wall::Count);
+
+/// Below this many parcels the loops run on one thread: a parallel region costs more than
+/// the work (and on a shared machine, threads waiting for a busy core cost far more).
+/// Results do not depend on it (every parcel gathers its own sums).
+inline constexpr std::size_t kParallelMinimum = 4096;
+
+/// One parcel to add (before the first step).
+struct ParcelInit {
+  double x = 0.0, y = 0.0;          ///< m
+  double vx = 0.0, vy = 0.0;        ///< m/s
+  double omega = 0.0;               ///< rad/s, counter-clockwise positive (right-handed z)
+  double diameter = 100e-6;         ///< m, parcel diameter n_xy d
+  double real_diameter = 100e-6;    ///< m, real particle diameter d
+  double density = 980.0;           ///< kg/m^3 of the real particles
+  double n_real = 1.0;              ///< real particles per parcel (per metre of depth)
+  double temperature = 300.0;       ///< K
+};
+
+class ParcelSystem {
+ public:
+  /// Contact laws, walls, domain, gravity, skin and heat capacity come from `cfg`;
+  /// the parcels are added with add_parcel (see make_paper_layer in layer_generator.hpp).
+  explicit ParcelSystem(const DemConfig& cfg);
+
+  void reserve(std::size_t n);
+  /// Adds one parcel; its id is the running count. Invalidates the neighbour list.
+  void add_parcel(const ParcelInit& p);
+  std::size_t size() const { return x.size(); }
+
+  /// Eq. (18): nu_DEM sqrt(min real-particle mass / max spring constant).
+  double stable_time_step() const;
+
+  /// One symplectic Euler step (v^{n+1} = v^n + dt F^n/m, x^{n+1} = x^n + dt v^{n+1}).
+  /// The external force parts (drag, Magnus, pressure, fluid torque, heat) are used as
+  /// they are in the arrays; contact parts are recomputed.
+  void step(double dt);
+
+  /// Called before every sub-step with (system, sub-step time) so the coupling can fill
+  /// the drag/Magnus/pressure/fluid-torque/heat arrays.
+  using SubstepHook = std::function<void(ParcelSystem&, double)>;
+  /// Advances by dt_total in n = ceil(dt_total / stable_time_step()) equal sub-steps.
+  /// Returns n.
+  int advance(double dt_total, const SubstepHook& hook = {});
+
+  /// Kinetic (translation + rotation) energy, J per metre of depth (sum over real particles).
+  double kinetic_energy() const;
+  /// Kinetic + elastic (contact springs, from the current overlaps and stored tangential
+  /// elongations) + gravitational potential, J per metre of depth.
+  double mechanical_energy() const;
+  /// Number of parcel–parcel pairs in contact (each counted once) at the current positions.
+  std::size_t contact_pair_count() const;
+
+  double time() const { return time_; }
+  long long steps() const { return steps_; }
+  long long neighbour_rebuilds() const { return rebuilds_; }
+  const DemConfig& config() const { return cfg_; }
+  /// Changes the body acceleration (e.g. gravity only while a bed settles).
+  void set_gravity(double gx, double gy) {
+    cfg_.gravity_x = gx;
+    cfg_.gravity_y = gy;
+  }
+  /// Set by the coupling when it fills heat_rate (eq. 7); off costs nothing.
+  bool integrate_temperature = false;
+  /// Set by the coupling when it fills the drag/Magnus/pressure/fluid-torque arrays;
+  /// while false the integrator does not read them (a DEM-only run pays nothing).
+  bool external_forces = false;
+
+  /// Forces a neighbour rebuild (and cell re-sort) before the next step.
+  void invalidate_neighbours() { needs_rebuild_ = true; }
+
+  // ---- Per-parcel state (SoA; the order changes when parcels are re-sorted by cell) ----
+  std::vector<std::int32_t> id;             ///< stable parcel id (order of add_parcel)
+  std::vector<double> x, y;                 ///< m (x unwrapped between rebuilds when periodic)
+  std::vector<double> vx, vy;               ///< m/s
+  std::vector<double> omega;                ///< rad/s, counter-clockwise positive
+  std::vector<double> temperature;          ///< K
+  std::vector<double> diameter;             ///< m, parcel
+  std::vector<double> radius;               ///< m, parcel (contact lever arm)
+  std::vector<double> mass;                 ///< kg/m, parcel (n_real m_real)
+  std::vector<double> inertia;              ///< kg m, parcel (cylinder: mass r^2 / 2)
+  std::vector<double> n_real;               ///< real particles per parcel (per metre)
+  std::vector<double> x_initial, y_initial; ///< m, where the parcel started (in-situ filters)
+
+  // ---- Force parts per REAL particle (N, N m, W); observers read, coupling writes ----
+  std::vector<double> contact_fx, contact_fy, contact_torque;  ///< recomputed every step
+  std::vector<double> drag_fx, drag_fy;
+  std::vector<double> magnus_fx, magnus_fy;
+  std::vector<double> pressure_fx, pressure_fy;
+  std::vector<double> fluid_torque;         ///< M_rotation (Table 1)
+  std::vector<double> heat_rate;            ///< Q_i, W (eq. 7)
+
+  // ---- Contact history (serialisable for checkpoints) ----
+  /// Neighbour list in CSR form: parcel i's candidates are slots
+  /// nbr_offset[i] .. nbr_offset[i+1]-1; nbr_index is the partner's current index,
+  /// nbr_image its periodic image (partner x seen from i = x[j] + image * L_x) and
+  /// nbr_delta the tangential spring elongation of the pair (0 when not touching).
+  std::vector<std::int32_t> nbr_offset, nbr_index;
+  std::vector<std::int8_t> nbr_image;
+  std::vector<double> nbr_delta;
+  /// Tangential elongation of each parcel against each wall: wall_delta[i * kWallCount + w].
+  std::vector<double> wall_delta;
+
+ private:
+  void rebuild_neighbours();
+  void sort_by_cell();
+  void compute_contacts(double dt);
+  void integrate(double dt);
+  double wall_position(int w) const;
+
+  DemConfig cfg_;
+  double length_x_ = 0.0;           ///< periodic length
+  double skin_ = 0.0;               ///< m, absolute
+  bool needs_rebuild_ = true;
+  double time_ = 0.0;
+  long long steps_ = 0;
+  long long rebuilds_ = 0;
+
+  // Derived per parcel, permuted along with the state.
+  std::vector<double> inv_mass_real_, inv_inertia_real_;
+  std::vector<double> x_build_, y_build_;   ///< positions at the last rebuild
+
+  // Cell grid of the last rebuild.
+  int cells_x_ = 1, cells_y_ = 1;
+  double cell_dx_ = 1.0, cell_dy_ = 1.0;
+  std::vector<std::int32_t> cell_of_, cell_start_, order_;
+
+  // Rebuild scratch (kept to avoid reallocation).
+  std::vector<double> scratch_d_;
+  std::vector<std::int32_t> scratch_i_;
+  std::vector<std::int32_t> old_offset_, old_partner_id_;
+  std::vector<double> old_delta_;
+};
+
+}  // namespace dustlift
