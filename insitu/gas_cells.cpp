@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 

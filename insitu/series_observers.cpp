@@ -9,7 +9,7 @@
 #include "insitu/series_table.hpp"
 #include "insitu/shock_position.hpp"
 #include "insitu/surface_height.hpp"
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 namespace {

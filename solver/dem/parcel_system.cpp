@@ -82,10 +82,13 @@ double ParcelSystem::stable_time_step() const {
   return cfg_.courant * std::sqrt(m_min / k_max);
 }
 
+int ParcelSystem::substeps_for(double dt_total) const {
+  return std::max(1, static_cast<int>(std::ceil(dt_total / stable_time_step() * (1.0 - 1e-12))));
+}
+
 int ParcelSystem::advance(double dt_total, const SubstepHook& hook) {
   if (!(dt_total > 0.0)) return 0;
-  const double dt_max = stable_time_step();
-  const int n = std::max(1, static_cast<int>(std::ceil(dt_total / dt_max * (1.0 - 1e-12))));
+  const int n = substeps_for(dt_total);
   const double dt = dt_total / n;
   const double t0 = time_;
   for (int k = 0; k < n; ++k) {

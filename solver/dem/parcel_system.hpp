@@ -63,7 +63,9 @@ class ParcelSystem {
   /// Called before every sub-step with (system, sub-step time) so the coupling can fill
   /// the drag/Magnus/pressure/fluid-torque/heat arrays.
   using SubstepHook = std::function<void(ParcelSystem&, double)>;
-  /// Advances by dt_total in n = ceil(dt_total / stable_time_step()) equal sub-steps.
+  /// n = ceil(dt_total / stable_time_step()): the sub-steps advance() takes for dt_total.
+  int substeps_for(double dt_total) const;
+  /// Advances by dt_total in n = substeps_for(dt_total) equal sub-steps.
   /// Returns n.
   int advance(double dt_total, const SubstepHook& hook = {});
 

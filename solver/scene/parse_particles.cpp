@@ -32,7 +32,7 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback) {
 
 }  // namespace
 
-void parse_particles(TableReader t, DemConfig& dem) {
+void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary) {
   dem.enabled = t.boolean("enabled", t.present());
   if (!dem.enabled) {
     t.finish();
@@ -80,26 +80,22 @@ void parse_particles(TableReader t, DemConfig& dem) {
   dem.contact = parse_contact(t.table("contact"), dem.contact);
   dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact);
 
-  TableReader dt = t.table("domain");
+  // The parcels live in the gas domain: its edges are walls for them, except where the
+  // gas is periodic (then the parcels are periodic too). Parcels never leave the grid.
   DemDomain& D = dem.domain;
-  D.x_min = dt.number("x_min", L.x_min);
-  D.x_max = dt.number("x_max", L.x_max);
-  if (!(D.x_max > D.x_min)) dt.fail("x_max", "must be greater than x_min");
-  D.y_min = dt.number("y_min", L.y_min);
-  D.y_max = dt.number("y_max", L.y_max + 0.02);
-  if (!(D.y_max > D.y_min)) dt.fail("y_max", "must be greater than y_min");
-  D.wall_bottom = dt.boolean("bottom_wall", true);
-  D.wall_top = dt.boolean("top_wall", false);
-  D.periodic_x = dt.boolean("periodic_x", false);
-  D.wall_left = dt.boolean("left_wall", false);
-  D.wall_right = dt.boolean("right_wall", false);
-  if (D.periodic_x && (D.wall_left || D.wall_right)) {
-    dt.fail(D.wall_left ? "left_wall" : "right_wall", "no side walls with periodic_x = true");
+  D.x_min = grid.x.start;
+  D.x_max = grid.x.end;
+  D.y_min = grid.y.start;
+  D.y_max = grid.y.end;
+  D.periodic_x = boundary.left == BoundaryKind::Periodic;
+  D.wall_left = D.wall_right = !D.periodic_x;
+  D.wall_bottom = D.wall_top = boundary.bottom != BoundaryKind::Periodic;
+  if (boundary.bottom == BoundaryKind::Periodic) {
+    t.fail("enabled", "parcels need walls at the bottom and top of the grid (boundary.bottom/top periodic)");
   }
   if (L.x_min < D.x_min || L.x_max > D.x_max || L.y_min < D.y_min || L.y_max > D.y_max) {
-    dt.fail("x_min", "the domain must contain the layer rectangle");
+    t.fail("layer", "the layer rectangle must lie inside the grid");
   }
-  dt.finish();
 
   dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));
   dem.skin = t.number("skin", dem.skin, Range::open_closed(0.0, 1.0));

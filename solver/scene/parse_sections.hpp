@@ -10,7 +10,8 @@ void parse_grid(TableReader t, GridConfig& grid);
 void parse_gas(TableReader t, GasConfig& gas);
 void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo);
 void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo);
-void parse_particles(TableReader t, DemConfig& dem);
+void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary);
+void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
 void parse_output(TableReader t, OutputConfig& out);
 
 /// A gas state table: p and exactly one of rho or T, optional u, v.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solver/core/grid.hpp"
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/dem/dem_config.hpp"
 #include "solver/gas/gas_config.hpp"
 
@@ -35,6 +36,7 @@ struct Scene {
   GasConfig gas;
   InitialCondition initial;
   DemConfig particles;
+  CouplingConfig coupling;  ///< used when particles are enabled
   OutputConfig output;
   std::string resolved_toml;  ///< the whole scene with every default filled in
 };

@@ -70,7 +70,8 @@ Scene parse_scene(const std::string& text, const std::string& name,
   parse_gas(root.table("gas"), scene.gas);
   parse_boundary(root.table("boundary"), scene.gas.boundary, scene.gas.thermo);
   parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo);
-  parse_particles(root.table("particles"), scene.particles);
+  parse_particles(root.table("particles"), scene.particles, scene.grid, scene.gas.boundary);
+  parse_coupling(root.table("coupling"), scene.coupling, scene.particles, scene.grid);
   parse_output(root.table("output"), scene.output);
   root.finish();
   check_cross_section(scene);

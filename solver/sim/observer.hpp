@@ -10,7 +10,8 @@
 
 namespace dustlift {
 
-class ParcelSystem;  // solver/dem/parcel_system.hpp
+class ParcelSystem;         // solver/dem/parcel_system.hpp
+class GasParticleCoupling;  // solver/coupling/gas_particle_coupling.hpp
 
 struct StateView {
   const Scene* scene = nullptr;
@@ -18,6 +19,7 @@ struct StateView {
   const GasSolver* gas = nullptr;
   GasPrimitives primitives{};
   const ParcelSystem* parcels = nullptr;  ///< null in a gas-only scene
+  const GasParticleCoupling* coupling = nullptr;  ///< null in a gas-only scene
   double time = 0.0;                      ///< s
   long long step = 0;
   std::string output_dir;                 ///< the run's output folder

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "solver/core/errors.hpp"
+#include "solver/dem/layer_generator.hpp"
 
 namespace dustlift {
 
@@ -20,6 +21,11 @@ Simulation::Simulation(const Scene& scene)
     : scene_(scene), grid_(scene.grid.x, scene.grid.y, kGhostLayers) {
   gas_ = std::make_unique<GasSolver>(grid_, scene_.gas);
   gas_->initialize(scene_.initial);
+  if (scene_.particles.enabled) {
+    parcels_ = std::make_unique<ParcelSystem>(make_layer_system(scene_.particles));
+    coupling_ = std::make_unique<GasParticleCoupling>(grid_, scene_.coupling, scene_.gas, scene_.particles);
+    coupling_->initialize(*gas_, *parcels_);
+  }
 }
 
 Simulation::~Simulation() = default;
@@ -38,7 +44,8 @@ StateView Simulation::view(const std::string& output_dir) const {
   v.grid = &grid_;
   v.gas = gas_.get();
   v.primitives = gas_->primitives();
-  v.parcels = nullptr;
+  v.parcels = parcels_.get();
+  v.coupling = coupling_.get();
   v.time = time_;
   v.step = step_;
   v.output_dir = output_dir;
@@ -61,7 +68,27 @@ std::vector<std::string> Simulation::enabled_effects() const {
                     : g.scheme.reconstruction == Reconstruction::Muscl2   ? "MUSCL 2nd order"
                                                                           : "MUSCL 3rd order (kappa = 1/3)";
   e.push_back(std::string("convection: SLAU2 + ") + rec + ", SSP-RK3");
-  e.push_back(scene_.particles.enabled ? "particles: DEM parcels" : "particles: none (gas only)");
+  if (!scene_.particles.enabled) {
+    e.push_back("particles: none (gas only)");
+    return e;
+  }
+  const auto& d = scene_.particles;
+  const auto& c = scene_.coupling;
+  std::ostringstream s;
+  s << "particles: " << (parcels_ ? parcels_->size() : 0) << " DEM parcels of " << d.parcel_diameter * 1e6
+    << " um holding " << d.real_per_parcel << " real particles of " << d.particle_diameter * 1e6
+    << " um per metre; spring-dashpot contacts (k_n " << d.contact.k_n << " N/m, k_t " << d.contact.k_t
+    << " N/m, h " << d.contact.damping << " N s/m)";
+  e.push_back(s.str());
+  e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)" : "coupling: one-way (gas does not feel the particles)");
+  if (c.drag) e.push_back(std::string("drag: Clift-Gauvin") + (c.compressibility_correction ? " x Parmar xi_1" : "") +
+                          (c.volume_fraction.kind == aero::VolumeFractionCorrection::Kind::None ? "" : " x xi_2(alpha_g)"));
+  if (c.magnus) e.push_back(std::string("Magnus lift: C_LM = ") + fmt_number(c.magnus_coefficient) +
+                            (c.magnus_convention == aero::MagnusConvention::Paper ? " (paper convention)" : " (standard convention)"));
+  if (c.pressure_force) e.push_back("pressure-gradient force");
+  if (c.rotation_torque) e.push_back("rotational friction torque (Dennis et al.)");
+  if (c.heat_transfer) e.push_back("heat transfer (Ranz-Marshall) and particle temperature");
+  if (d.gravity_y != 0.0) e.push_back("gravity on the parcels");
   return e;
 }
 
@@ -73,6 +100,7 @@ double Simulation::advance(double dt_max) {
     throw NumericalFailure(s.str());
   }
   try {
+    if (parcels_) coupling_->advance(*gas_, *parcels_, dt);
     gas_->step(dt);
   } catch (const NumericalFailure& f) {
     std::ostringstream s;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/coupling/gas_particle_coupling.hpp"
+#include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
@@ -41,6 +43,10 @@ class Simulation {
   GasSolver& gas() { return *gas_; }
   const GasSolver& gas() const { return *gas_; }
   const Grid2D& grid() const { return grid_; }
+  /// Null in a gas-only scene.
+  ParcelSystem* parcels() { return parcels_.get(); }
+  const ParcelSystem* parcels() const { return parcels_.get(); }
+  const GasParticleCoupling* coupling() const { return coupling_.get(); }
 
   /// The physical effects this scene switches on, one short phrase each (for `dustlift info`).
   std::vector<std::string> enabled_effects() const;
@@ -49,6 +55,8 @@ class Simulation {
   Scene scene_;
   Grid2D grid_;
   std::unique_ptr<GasSolver> gas_;
+  std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
+  std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
   std::vector<std::unique_ptr<Observer>> observers_;
   std::function<void(const Progress&)> progress_;
   double time_ = 0.0;

@@ -92,13 +92,9 @@ damping = 2e-4
 friction = 0.3
 [particles.wall_contact]
 coulomb = false
-[particles.domain]
-x_min = 0.0
-x_max = 0.05
-y_min = -0.001
-y_max = 0.01
-periodic_x = true
-top_wall = true
+[boundary]
+left = "periodic"
+right = "periodic"
 )");
   const DemConfig& d = s.particles;
   EXPECT_EQ(d.particle_diameter, 50e-6);
@@ -111,8 +107,11 @@ top_wall = true
   EXPECT_EQ(d.contact.friction, 0.3);
   EXPECT_EQ(d.wall_contact.k_n, 1e5);  // wall defaults follow the particle contact
   EXPECT_TRUE(std::isinf(d.wall_contact.friction));
+  // The parcels' domain is the gas grid; periodic gas boundaries make the parcels periodic.
   EXPECT_TRUE(d.domain.periodic_x);
+  EXPECT_FALSE(d.domain.wall_left);
   EXPECT_TRUE(d.domain.wall_top);
+  EXPECT_EQ(d.domain.y_max, 0.03);
 }
 
 TEST(SceneParticles, UnknownKeyIsNamed) {
@@ -141,8 +140,7 @@ TEST(SceneParticles, VolumeFractionAtOrAbove0p9IsNamed) {
 
 TEST(SceneParticles, InconsistentSettingsAreNamed) {
   EXPECT_NE(error_of("[particles]\nparcel_diameter = 50e-6\n").find("particles.parcel_diameter"), std::string::npos);
-  EXPECT_NE(error_of("[particles.domain]\nperiodic_x = true\nleft_wall = true\n").find("particles.domain.left_wall"),
-            std::string::npos);
+  EXPECT_NE(error_of("[particles.layer]\nx_max = 0.5\n").find("particles.layer"), std::string::npos);
   EXPECT_NE(error_of("[particles.contact]\ncoulomb = false\nfriction = 0.2\n").find("particles.contact.friction"),
             std::string::npos);
 }

@@ -18,7 +18,7 @@
 
 #include "insitu/gas_cells.hpp"
 #include "insitu/vtk_writers.hpp"
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "insitu/surface_height.hpp"
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
 #include "solver/core/grid.hpp"
 
 namespace dustlift {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 

@@ -1,4 +1,6 @@
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
+
+#include <algorithm>
 
 #include <cstddef>
 #include <stdexcept>
@@ -68,6 +70,46 @@ std::vector<double> vorticity_z(const Grid2D& grid, const Field2D& u, const Fiel
   std::vector<double> out(grid.interior_cells());
   vorticity_z(xc, yc, ui, vi, out);
   return out;
+}
+
+namespace {
+
+/// d f / d s along an axis at interior index k, f read through `at(m)` for interior m.
+template <class At>
+double axis_derivative(const Axis& a, int k, At at) {
+  const int n = a.cells();
+  if (n < 2) return 0.0;
+  if (n == 2) return (at(1) - at(0)) / (a.center(1) - a.center(0));
+  const int first = k == 0 ? 0 : (k == n - 1 ? n - 3 : k - 1);
+  const ThreePointWeights w = derivative_weights(a.center(first), a.center(first + 1), a.center(first + 2), a.center(k));
+  return w.w0 * at(first) + w.w1 * at(first + 1) + w.w2 * at(first + 2);
+}
+
+}  // namespace
+
+void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out) {
+  j0 = std::max(j0, 0);
+  j1 = std::min(j1, g.ny());
+#pragma omp parallel for schedule(static)
+  for (int j = j0; j < j1; ++j) {
+    for (int i = 0; i < g.nx(); ++i) {
+      const double dvdx = axis_derivative(g.x(), i, [&](int m) { return v(m, j); });
+      const double dudy = axis_derivative(g.y(), j, [&](int m) { return u(i, m); });
+      out(i, j) = dvdx - dudy;
+    }
+  }
+}
+
+void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy) {
+  j0 = std::max(j0, 0);
+  j1 = std::min(j1, g.ny());
+#pragma omp parallel for schedule(static)
+  for (int j = j0; j < j1; ++j) {
+    for (int i = 0; i < g.nx(); ++i) {
+      dfdx(i, j) = axis_derivative(g.x(), i, [&](int m) { return f(m, j); });
+      dfdy(i, j) = axis_derivative(g.y(), j, [&](int m) { return f(i, m); });
+    }
+  }
 }
 
 }  // namespace dustlift

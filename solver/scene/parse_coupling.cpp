@@ -1,0 +1,47 @@
+// [coupling]: which gas-particle effects act (paper Table 1, eqs. 7-16) and their options.
+#include <algorithm>
+
+#include "solver/core/grid.hpp"
+#include "solver/scene/parse_sections.hpp"
+
+namespace dustlift::scene_detail {
+
+void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid) {
+  if (!dem.enabled) {
+    if (t.present()) t.fail("two_way", "a [coupling] section needs [particles]");
+    return;
+  }
+  c.two_way = t.boolean("two_way", c.two_way);
+  c.drag = t.boolean("drag", c.drag);
+  c.compressibility_correction = t.boolean("compressibility_correction", c.compressibility_correction);
+  const auto vf = t.choice("volume_fraction_correction", "sangani", {"sangani", "linear", "none"});
+  c.volume_fraction.kind = vf == "sangani"  ? aero::VolumeFractionCorrection::Kind::Sangani
+                           : vf == "linear" ? aero::VolumeFractionCorrection::Kind::Linear
+                                            : aero::VolumeFractionCorrection::Kind::None;
+  c.volume_fraction.phi_cap = t.number("volume_fraction_cap", 1.0, Range::open_closed(0.0, 1.0));
+  c.magnus = t.boolean("magnus", c.magnus);
+  c.magnus_coefficient = t.number("magnus_coefficient", c.magnus_coefficient, Range::non_negative());
+  const auto conv = t.choice("magnus_convention", "paper", {"paper", "standard"});
+  c.magnus_convention = conv == "paper" ? aero::MagnusConvention::Paper : aero::MagnusConvention::Standard;
+  c.lun_liu = t.boolean("lun_liu", c.lun_liu);
+  c.pressure_force = t.boolean("pressure_force", c.pressure_force);
+  c.rotation_torque = t.boolean("rotation_torque", c.rotation_torque);
+  c.torque_stokes_below = t.number("torque_stokes_below", c.torque_stokes_below, Range::non_negative());
+  c.heat_transfer = t.boolean("heat_transfer", c.heat_transfer);
+  const auto rule = t.choice("interpolation", "triangle", {"triangle", "bilinear"});
+  c.interpolation = rule == "triangle" ? InterpolationRule::Triangle : InterpolationRule::Bilinear;
+  c.influence_width = t.number("influence_width", dem.parcel_diameter, Range::non_negative());
+  const double min_cell = std::min(Axis(build_axis_nodes(grid.x), 0).min_width(),
+                                   Axis(build_axis_nodes(grid.y), 0).min_width());
+  if (c.influence_width > min_cell) {
+    t.fail("influence_width", "must not exceed the smallest cell (" + std::to_string(min_cell) + " m)");
+  }
+  if (dem.parcel_diameter > min_cell) {
+    throw SceneError(t.file() + ": key 'particles.parcel_diameter': parcels larger than the smallest grid cell (" +
+                     std::to_string(min_cell) + " m) break the unresolved-particle model (eqs. 12-16)");
+  }
+  c.max_volume_fraction = t.number("max_volume_fraction", c.max_volume_fraction, Range::open(0.0, 1.0));
+  t.finish();
+}
+
+}  // namespace dustlift::scene_detail
