@@ -90,7 +90,7 @@ double axis_derivative(const Axis& a, int k, At at) {
 void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
   for (int j = j0; j < j1; ++j) {
     for (int i = 0; i < g.nx(); ++i) {
       const double dvdx = axis_derivative(g.x(), i, [&](int m) { return v(m, j); });
@@ -103,7 +103,7 @@ void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j
 void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
   for (int j = j0; j < j1; ++j) {
     for (int i = 0; i < g.nx(); ++i) {
       dfdx(i, j) = axis_derivative(g.x(), i, [&](int m) { return f(m, j); });

@@ -15,6 +15,9 @@
 namespace dustlift {
 namespace {
 
+/// Below this many parcels a parallel region costs more than it saves.
+constexpr std::size_t kParallelParcels = 4096;
+
 /// cp(T) and c(T) of the configured thermodynamics.
 struct ThermoAt {
   double cp, c;
@@ -139,7 +142,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
     copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
   }
   const std::size_t n = parcels.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
     const InterpolationStencil st = interpolation_stencil(grid_, parcels.x[k], parcels.y[k], cfg_.interpolation);
     Sample s{};
@@ -170,7 +173,7 @@ void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool f
   const std::size_t n = ps.size();
   const double d = dem_cfg_.particle_diameter;
   const auto& c = cfg_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
     const auto id = static_cast<std::size_t>(ps.id[k]);
     const Sample& s = samples_[id];
@@ -224,7 +227,7 @@ void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool f
 
 void GasParticleCoupling::finish_work(const ParcelSystem& ps) {
   const std::size_t n = ps.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
     const auto id = static_cast<std::size_t>(ps.id[k]);
     work_[id] += (force_x_prev_[id] * 0.5 * (vx_prev_[id] + ps.vx[k]) +
