@@ -20,15 +20,23 @@ constexpr std::size_t kParallelParcels = 4096;
 
 /// cp(T) and c(T) of the configured thermodynamics.
 struct ThermoAt {
-  double cp, c;
+  double cp, c, gamma;
 };
 ThermoAt thermo_at(const ThermoConfig& t, double T) {
   if (t.model == ThermoModel::CaloricallyPerfect) {
     const CaloricallyPerfectGas g(t.gamma, t.gas_constant);
-    return {g.cp(T), std::sqrt(g.sound_speed_squared(T))};
+    return {g.cp(T), std::sqrt(g.sound_speed_squared(T)), g.gamma(T)};
   }
   const ThermallyPerfectAir a(t.gas_constant);
-  return {a.cp(T), std::sqrt(a.sound_speed_squared(T))};
+  return {a.cp(T), std::sqrt(a.sound_speed_squared(T)), a.gamma(T)};
+}
+
+/// Drag per unit slip velocity of one real particle: 3 pi mu d (Re C_D / 24) xi_2 (Table 1).
+double drag_coefficient(double rho, double mu, double c, double alpha_g, double d, double slip,
+                        const CouplingConfig& cfg) {
+  const double re = rho * slip * d / mu;
+  const double re_cd = cfg.compressibility_correction ? aero::re_cd_parmar(slip / c, re) : aero::re_cd_standard(re);
+  return 3.0 * std::numbers::pi * mu * d * re_cd / 24.0 * aero::xi2(alpha_g, cfg.volume_fraction);
 }
 
 /// The particle models always need mu and lambda; an inviscid gas lends them the
@@ -61,7 +69,8 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
                                          const GasConfig& gas, const DemConfig& dem)
     : grid_(grid), cfg_(config), gas_cfg_(gas), dem_cfg_(dem),
       particle_volume_(std::numbers::pi / 6.0 * std::pow(dem.particle_diameter, 3)),
-      alpha_p_(grid), src_x_(grid), src_y_(grid), src_e_(grid) {
+      alpha_p_(grid), src_x_(grid), src_y_(grid), src_e_(grid), cell_drag_(grid), cell_heat_(grid),
+      cell_mass_(grid), cell_heat_capacity_(grid) {
   if (needs_vorticity()) vorticity_ = Field2D(grid);
   if (cfg_.pressure_force) {
     dpdx_ = Field2D(grid);
@@ -128,7 +137,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   gas.refresh_primitives();
 }
 
-void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& parcels) {
+void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& parcels, double dt) {
   const GasPrimitives g = gas.primitives();
   int j0 = 0, j1 = 0;
   row_range(parcels, j0, j1);
@@ -167,6 +176,62 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
     gas_rotation_[id] = 0.5 * s.vorticity;
     impulse_x_[id] = impulse_y_[id] = work_[id] = heat_[id] = 0.0;
   }
+  if (cfg_.two_way) stiff_exchange_relief(gas, parcels, dt);
+}
+
+void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const ParcelSystem& ps, double dt) {
+  const double d = dem_cfg_.particle_diameter;
+  int j0 = 0, j1 = 0;
+  row_range(ps, j0, j1);
+  for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) {
+    for (int j = 0; j < j1; ++j)
+      for (int i = 0; i < grid_.nx(); ++i) (*f)(i, j) = 0.0;
+  }
+  // Per-cell sums over the parcels, in parcel order (thread-independent).
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    const Sample& s = samples_[static_cast<std::size_t>(ps.id[k])];
+    const double slip = std::hypot(s.u - ps.vx[k], s.v - ps.vy[k]);
+    const double nr = ps.n_real[k];
+    const double kd = cfg_.drag ? nr * drag_coefficient(s.rho, s.mu, s.c, s.alpha_g, d, slip, cfg_) : 0.0;
+    double kh = 0.0;
+    if (cfg_.heat_transfer) {
+      const double re = s.rho * slip * d / s.mu;
+      kh = nr * std::numbers::pi * d * s.lambda * aero::nusselt_ranz_marshall(re, s.mu * s.cp / s.lambda);
+    }
+    const DepositStencil st = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
+    for (int m = 0; m < st.count; ++m) {
+      const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
+      const double f = st.fraction[static_cast<std::size_t>(m)];
+      cell_drag_(i, j) += f * kd;
+      cell_heat_(i, j) += f * kh;
+      cell_mass_(i, j) += f * ps.mass[k];
+      cell_heat_capacity_(i, j) += f * ps.mass[k] * dem_cfg_.heat_capacity;
+    }
+  }
+  const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
+  const GasPrimitives g = gas.primitives();
+  for (int j = 0; j < j1; ++j) {
+    for (int i = 0; i < grid_.nx(); ++i) {
+      if (cell_mass_(i, j) == 0.0) continue;
+      const double m_gas = gas_mass_density(i, j) * grid_.area(i, j);
+      const ThermoAt th = thermo_at(gas_cfg_.thermo, (*g.T)(i, j));
+      const double cv_gas = th.cp / th.gamma;
+      cell_drag_(i, j) = 1.0 / (1.0 + dt * cell_drag_(i, j) * (1.0 / m_gas + 1.0 / cell_mass_(i, j)));
+      cell_heat_(i, j) =
+          1.0 / (1.0 + dt * cell_heat_(i, j) * (1.0 / (m_gas * cv_gas) + 1.0 / cell_heat_capacity_(i, j)));
+    }
+  }
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    Sample& s = samples_[static_cast<std::size_t>(ps.id[k])];
+    const DepositStencil st = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
+    s.drag_relief = s.heat_relief = 0.0;
+    for (int m = 0; m < st.count; ++m) {
+      const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
+      const double f = st.fraction[static_cast<std::size_t>(m)];
+      s.drag_relief += f * cell_drag_(i, j);
+      s.heat_relief += f * cell_heat_(i, j);
+    }
+  }
 }
 
 void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool first) {
@@ -188,10 +253,7 @@ void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool f
     const double speed = ur.norm();
     const double re = s.rho * speed * d / s.mu;
     Vec2 drag{}, magnus{}, pressure{};
-    if (c.drag) {
-      const double re_cd = c.compressibility_correction ? aero::re_cd_parmar(speed / s.c, re) : aero::re_cd_standard(re);
-      drag = ur * (3.0 * std::numbers::pi * s.mu * d * re_cd / 24.0 * aero::xi2(s.alpha_g, c.volume_fraction));
-    }
+    if (c.drag) drag = ur * (s.drag_relief * drag_coefficient(s.rho, s.mu, s.c, s.alpha_g, d, speed, c));
     const double w_rel = aero::relative_rotation(s.vorticity, ps.omega[k]);
     relative_rotation_[id] = w_rel;
     if (c.magnus) {
@@ -209,7 +271,7 @@ void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool f
     double q = 0.0;
     if (c.heat_transfer) {
       const double pr = s.mu * s.cp / s.lambda;
-      q = aero::heat_flow(s.lambda, aero::nusselt_ranz_marshall(re, pr), d, s.T, ps.temperature[k]);
+      q = s.heat_relief * aero::heat_flow(s.lambda, aero::nusselt_ranz_marshall(re, pr), d, s.T, ps.temperature[k]);
       ps.heat_rate[k] = q;
     }
     // Exchange terms (eqs. 13-15): drag + Magnus momentum and heat, per real particle.
@@ -281,9 +343,15 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
     }
   }
   // Porosity update with the p d(alpha_g)/dt work of eq. (3): alpha_g rho and alpha_g rho u
-  // are unchanged; the gas energy pays p times the volume the particles took.
+  // are unchanged; the gas is compressed or expanded isentropically by the volume the
+  // particles took or gave back. To first order this is exactly -p d(alpha_g); unlike the
+  // linear form it cannot drive the internal energy negative when alpha_g changes by a
+  // large fraction in one step.
   Field2D& alpha = gas.porosity();
-  const Field2D& p = *gas.primitives().p;
+  const Field2D& temperature = *gas.primitives().T;
+  const Field2D& mass = gas.conserved(0);
+  const Field2D& mom_x = gas.conserved(1);
+  const Field2D& mom_y = gas.conserved(2);
   Field2D& energy = gas.conserved(3);
   Field2D* sources[3] = {&gas.source(1), &gas.source(2), &gas.source(3)};
   for (int j = 0; j < grid_.ny(); ++j) {
@@ -291,7 +359,9 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
       const double a_new = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
       const double a_old = alpha(i, j);
       if (a_new != a_old) {
-        energy(i, j) -= p(i, j) * (a_new - a_old);
+        const double kinetic = 0.5 * (mom_x(i, j) * mom_x(i, j) + mom_y(i, j) * mom_y(i, j)) / mass(i, j);
+        const double gamma = thermo_at(gas_cfg_.thermo, temperature(i, j)).gamma;
+        energy(i, j) = kinetic + (energy(i, j) - kinetic) * std::pow(a_old / a_new, gamma - 1.0);
         alpha(i, j) = a_new;
       }
       (*sources[0])(i, j) = -src_x_(i, j);
@@ -307,7 +377,7 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
 }
 
 void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double dt) {
-  sample_gas(gas, parcels);
+  sample_gas(gas, parcels, dt);
   int substep = 0;
   const int n = parcels.substeps_for(dt);
   const double dt_sub = dt / n;
