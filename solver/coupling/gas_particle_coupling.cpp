@@ -170,6 +170,30 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
     s.vorticity = needs_vorticity() ? st.apply(vorticity_) : 0.0;
     s.dpdx = cfg_.pressure_force ? st.apply(dpdx_) : 0.0;
     s.dpdy = cfg_.pressure_force ? st.apply(dpdy_) : 0.0;
+    // Model coefficients for this CFD step, at the parcel's current slip and spin (Table 1);
+    // the sub-steps apply them to the current slip, spin and temperature.
+    const double d = dem_cfg_.particle_diameter;
+    const double slip = std::hypot(s.u - parcels.vx[k], s.v - parcels.vy[k]);
+    const double re = s.rho * slip * d / s.mu;
+    if (cfg_.drag) s.drag_coef = drag_coefficient(s.rho, s.mu, s.c, s.alpha_g, d, slip, cfg_);
+    if (cfg_.magnus) {
+      const double c_lm = cfg_.magnus_coefficient * (cfg_.lun_liu ? aero::lun_liu_factor(re) : 1.0);
+      s.magnus_coef = c_lm * std::numbers::pi / 8.0 * s.rho * d * d * d;
+    }
+    if (cfg_.pressure_force) {
+      const Vec2 f = aero::pressure_force(d, {s.dpdx, s.dpdy});
+      s.pressure_fx = f.x;
+      s.pressure_fy = f.y;
+    }
+    if (cfg_.rotation_torque) {
+      // M = kappa w_rel with kappa = M(w_rel0) / w_rel0 (Dennis et al. torque is odd in w_rel).
+      const double w0 = aero::relative_rotation(s.vorticity, parcels.omega[k]);
+      s.torque_coef = w0 != 0.0 ? aero::rotation_torque(s.rho, s.mu, d, w0, cfg_.torque_stokes_below) / w0
+                                : std::numbers::pi * s.mu * d * d * d;  // Stokes slope at w_rel -> 0
+    }
+    if (cfg_.heat_transfer) {
+      s.heat_coef = std::numbers::pi * d * s.lambda * aero::nusselt_ranz_marshall(re, s.mu * s.cp / s.lambda);
+    }
     const auto id = static_cast<std::size_t>(parcels.id[k]);
     samples_[id] = s;
     sampled_p_[id] = s.p;
@@ -180,7 +204,6 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
 }
 
 void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const ParcelSystem& ps, double dt) {
-  const double d = dem_cfg_.particle_diameter;
   int j0 = 0, j1 = 0;
   row_range(ps, j0, j1);
   for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) {
@@ -190,14 +213,8 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const Parc
   // Per-cell sums over the parcels, in parcel order (thread-independent).
   for (std::size_t k = 0; k < ps.size(); ++k) {
     const Sample& s = samples_[static_cast<std::size_t>(ps.id[k])];
-    const double slip = std::hypot(s.u - ps.vx[k], s.v - ps.vy[k]);
-    const double nr = ps.n_real[k];
-    const double kd = cfg_.drag ? nr * drag_coefficient(s.rho, s.mu, s.c, s.alpha_g, d, slip, cfg_) : 0.0;
-    double kh = 0.0;
-    if (cfg_.heat_transfer) {
-      const double re = s.rho * slip * d / s.mu;
-      kh = nr * std::numbers::pi * d * s.lambda * aero::nusselt_ranz_marshall(re, s.mu * s.cp / s.lambda);
-    }
+    const double kd = ps.n_real[k] * s.drag_coef;
+    const double kh = ps.n_real[k] * s.heat_coef;
     const DepositStencil st = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
     for (int m = 0; m < st.count; ++m) {
       const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
@@ -224,20 +241,24 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const Parc
   for (std::size_t k = 0; k < ps.size(); ++k) {
     Sample& s = samples_[static_cast<std::size_t>(ps.id[k])];
     const DepositStencil st = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
-    s.drag_relief = s.heat_relief = 0.0;
+    double drag_relief = 0.0, heat_relief = 0.0;
     for (int m = 0; m < st.count; ++m) {
       const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
       const double f = st.fraction[static_cast<std::size_t>(m)];
-      s.drag_relief += f * cell_drag_(i, j);
-      s.heat_relief += f * cell_heat_(i, j);
+      drag_relief += f * cell_drag_(i, j);
+      heat_relief += f * cell_heat_(i, j);
     }
+    s.drag_coef *= drag_relief;
+    s.heat_coef *= heat_relief;
   }
 }
 
 void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool first) {
+  // Cheap per sub-step: the coefficients were evaluated once per CFD step (sample_gas); here
+  // they act on the parcel's current slip, spin and temperature.
   const std::size_t n = ps.size();
-  const double d = dem_cfg_.particle_diameter;
   const auto& c = cfg_;
+  const double magnus_sign = c.magnus_convention == aero::MagnusConvention::Standard ? 1.0 : -1.0;
 #pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
     const auto id = static_cast<std::size_t>(ps.id[k]);
@@ -248,32 +269,20 @@ void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool f
       work_[id] += (force_x_prev_[id] * 0.5 * (vx_prev_[id] + ps.vx[k]) +
                     force_y_prev_[id] * 0.5 * (vy_prev_[id] + ps.vy[k])) * dt_sub_prev_;
     }
-    const Vec2 up{ps.vx[k], ps.vy[k]};
-    const Vec2 ur = Vec2{s.u, s.v} - up;
-    const double speed = ur.norm();
-    const double re = s.rho * speed * d / s.mu;
-    Vec2 drag{}, magnus{}, pressure{};
-    if (c.drag) drag = ur * (s.drag_relief * drag_coefficient(s.rho, s.mu, s.c, s.alpha_g, d, speed, c));
+    const Vec2 ur{s.u - ps.vx[k], s.v - ps.vy[k]};
     const double w_rel = aero::relative_rotation(s.vorticity, ps.omega[k]);
     relative_rotation_[id] = w_rel;
-    if (c.magnus) {
-      const double c_lm = c.magnus_coefficient * (c.lun_liu ? aero::lun_liu_factor(re) : 1.0);
-      magnus = aero::magnus_force(s.rho, d, ur, w_rel, c_lm, c.magnus_convention);
-    }
-    if (c.pressure_force) pressure = aero::pressure_force(d, {s.dpdx, s.dpdy});
+    const Vec2 drag = ur * s.drag_coef;
+    const Vec2 magnus = cross(magnus_sign * s.magnus_coef * w_rel, ur);  // Table 1, see aero::magnus_force
     ps.drag_fx[k] = drag.x;
     ps.drag_fy[k] = drag.y;
     ps.magnus_fx[k] = magnus.x;
     ps.magnus_fy[k] = magnus.y;
-    ps.pressure_fx[k] = pressure.x;
-    ps.pressure_fy[k] = pressure.y;
-    ps.fluid_torque[k] = c.rotation_torque ? aero::rotation_torque(s.rho, s.mu, d, w_rel, c.torque_stokes_below) : 0.0;
-    double q = 0.0;
-    if (c.heat_transfer) {
-      const double pr = s.mu * s.cp / s.lambda;
-      q = s.heat_relief * aero::heat_flow(s.lambda, aero::nusselt_ranz_marshall(re, pr), d, s.T, ps.temperature[k]);
-      ps.heat_rate[k] = q;
-    }
+    ps.pressure_fx[k] = s.pressure_fx;
+    ps.pressure_fy[k] = s.pressure_fy;
+    ps.fluid_torque[k] = s.torque_coef * w_rel;
+    const double q = s.heat_coef * (s.T - ps.temperature[k]);
+    if (c.heat_transfer) ps.heat_rate[k] = q;
     // Exchange terms (eqs. 13-15): drag + Magnus momentum and heat, per real particle.
     const Vec2 exchange = drag + magnus;
     impulse_x_[id] += exchange.x * dt_sub;

@@ -59,8 +59,12 @@ class GasParticleCoupling {
  private:
   struct Sample {
     double rho, u, v, p, T, mu, lambda, c, cp, alpha_g, vorticity, dpdx, dpdy;
-    double drag_relief = 1.0;  ///< implicit factor on drag, see stiff_exchange_relief()
-    double heat_relief = 1.0;  ///< same for heat transfer
+    // Per-CFD-step model coefficients (per real particle), zero for effects that are off:
+    double drag_coef = 0.0;    ///< F_drag = drag_coef u_r (includes stiff_exchange_relief)
+    double magnus_coef = 0.0;  ///< C_LM (pi/8) rho d^3
+    double pressure_fx = 0.0, pressure_fy = 0.0;  ///< -V_p grad p
+    double torque_coef = 0.0;  ///< M_rotation = torque_coef w_rel
+    double heat_coef = 0.0;    ///< Q = heat_coef (T_g - T_p) (includes the relief)
   };
   /// Drag and heat exchange are stiff in a packed layer: the gas in a cell holds far less
   /// momentum and heat than its particles (mass loading ~ 700 at alpha_p = 0.59), so its
