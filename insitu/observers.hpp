@@ -1,6 +1,7 @@
 #pragma once
 // Factories for the in-situ observers. VTK- and HDF5-free: app/ and sim/ include this
 // header only; the implementations live in insitu/*.cpp.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -11,6 +12,11 @@ namespace dustlift {
 /// Writes OUTDIR/vtk/gas_NNNNNN.vtr at each output and rewrites OUTDIR/gas.pvd
 /// (timestep = simulated time in s). Needs StateView::gas (Mach uses sound_speed).
 std::unique_ptr<Observer> make_vtk_gas_writer();
+
+/// Same with the sound speed c(view, i, j) supplied by the caller (tests, or a scene
+/// whose gas model is not a GasSolver); make_vtk_gas_writer() passes gas->sound_speed.
+using SoundSpeedFunction = std::function<double(const StateView&, int, int)>;
+std::unique_ptr<Observer> make_vtk_gas_writer(SoundSpeedFunction sound_speed);
 
 struct SurfaceHeightOptions {
   double threshold = 1e-4;              ///< alpha_p level of the surface (paper section 3.2)
