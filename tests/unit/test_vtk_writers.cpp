@@ -1,6 +1,7 @@
 // The .vtr/.vtp writers: files load with VTK's XML readers, hold every named array with
 // the right tuple and component counts, values round-trip; the .pvd lists files and times.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -27,7 +28,7 @@ namespace dustlift {
 namespace {
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_test_" + name);
+  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
