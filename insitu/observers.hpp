@@ -5,6 +5,8 @@
 #include <memory>
 #include <vector>
 
+#include "insitu/band_average.hpp"
+#include "insitu/parcel_arrays.hpp"
 #include "solver/sim/observer.hpp"
 
 namespace dustlift {
@@ -36,5 +38,26 @@ struct ShockPositionOptions {
 /// Shock position: series shock_position (time_s, x_m), rightmost x over rows with
 /// y >= y_min where p > p_ambient (1 + threshold), interpolated between cell centres.
 std::unique_ptr<Observer> make_shock_position_observer(ShockPositionOptions options = {});
+
+/// Parcel writer: OUTDIR/vtk/parcels_NNNNNN.vtp + OUTDIR/parcels.pvd at each output.
+/// `parcels_of` adapts the state (e.g. its ParcelSystem) to array views; it is called at
+/// outputs only and the spans must stay valid until it is called again.
+using ParcelArraysOf = std::function<ParcelArraysView(const StateView&)>;
+std::unique_ptr<Observer> make_vtk_parcel_writer(ParcelArraysOf parcels_of);
+
+struct BandForceOptions {
+  std::vector<Band> bands;            ///< one series forces_<name> per band
+  BandAverageOptions averaging;       ///< tau bins and the contact-force window
+  ShockPositionOptions shock;         ///< how the shock arrival is detected
+  bool sample_every_step = true;      ///< false: sample at outputs only
+};
+/// Band-averaged force histories (series forces_<band>): at every step (or output) finds
+/// the shock position from the pressure field, sets each parcel's arrival time when the
+/// shock first reaches its initial x, and bins the band's parcels by t - t_arrival.
+/// `parcels_of` supplies everything but arrival_time (the observer keeps that, indexed
+/// like the parcel arrays, whose count must not change during the run).
+using BandParcelsOf = std::function<BandParcelsView(const StateView&)>;
+std::unique_ptr<Observer> make_band_force_observer(BandForceOptions options,
+                                                   BandParcelsOf parcels_of);
 
 }  // namespace dustlift
