@@ -47,6 +47,7 @@ def shock_position(series, out):
         speed, intercept = np.polyfit(t[ok], x[ok], 1)
         tt = np.linspace(t[ok].min(), t[ok].max(), 2)
         ax.plot(tt * 1e3, (speed * tt + intercept) * 1e3, "-", label="linear fit: %.1f m/s" % speed)
+        print("shock speed (linear fit): %.9g m/s" % speed)
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("shock position x [mm]")
     ax.legend()
