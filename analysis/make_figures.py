@@ -5,8 +5,8 @@ Usage: /usr/bin/python3 analysis/make_figures.py OUTDIR [--max-curves N]
 
 Reads OUTDIR/series/*.csv (header "name_unit,...", first column the abscissa) and writes
 into OUTDIR/figures/ whatever the present series allow:
-  shock_position.png           x_s(t) with a least-squares line; its slope (the shock
-                               speed) is given in the legend
+  shock_position.png           x_s(t) with a least-squares line through the t > 0 points;
+                               its slope (the shock speed) is in the legend and printed
   surface_height.png           dust-surface height h(x) at the output times (Fig. 9 style)
   surface_height_stations.png  h(t) at the station columns
   forces_<band>.png            band-averaged horizontal and vertical force parts and mean
@@ -43,10 +43,16 @@ def shock_position(series, out):
     ok = np.isfinite(x)
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(t[ok] * 1e3, x[ok] * 1e3, "o", ms=3, label="shock position")
-    if ok.sum() >= 2:
-        speed, intercept = np.polyfit(t[ok], x[ok], 1)
-        tt = np.linspace(t[ok].min(), t[ok].max(), 2)
+    # Fit t > 0 only: at t = 0 of a Riemann start the filter sees the diaphragm, whose
+    # offset from the captured shock's foot differs (Sod: 0.8 % too fast with it).
+    fit = ok & (t > 0)
+    if fit.sum() < 2:
+        fit = ok
+    if fit.sum() >= 2:
+        speed, intercept = np.polyfit(t[fit], x[fit], 1)
+        tt = np.linspace(t[fit].min(), t[fit].max(), 2)
         ax.plot(tt * 1e3, (speed * tt + intercept) * 1e3, "-", label="linear fit: %.1f m/s" % speed)
+        print("shock speed (linear fit): %.9g m/s" % speed)
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("shock position x [mm]")
     ax.legend()

@@ -1,9 +1,12 @@
 #pragma once
 // Factories for the in-situ observers. VTK- and HDF5-free: app/ and sim/ include this
 // header only; the implementations live in insitu/*.cpp.
+#include <functional>
 #include <memory>
 #include <vector>
 
+#include "insitu/band_average.hpp"
+#include "insitu/parcel_arrays.hpp"
 #include "solver/sim/observer.hpp"
 
 namespace dustlift {
@@ -11,6 +14,11 @@ namespace dustlift {
 /// Writes OUTDIR/vtk/gas_NNNNNN.vtr at each output and rewrites OUTDIR/gas.pvd
 /// (timestep = simulated time in s). Needs StateView::gas (Mach uses sound_speed).
 std::unique_ptr<Observer> make_vtk_gas_writer();
+
+/// Same with the sound speed c(view, i, j) supplied by the caller (tests, or a scene
+/// whose gas model is not a GasSolver); make_vtk_gas_writer() passes gas->sound_speed.
+using SoundSpeedFunction = std::function<double(const StateView&, int, int)>;
+std::unique_ptr<Observer> make_vtk_gas_writer(SoundSpeedFunction sound_speed);
 
 struct SurfaceHeightOptions {
   double threshold = 1e-4;              ///< alpha_p level of the surface (paper section 3.2)
@@ -30,5 +38,26 @@ struct ShockPositionOptions {
 /// Shock position: series shock_position (time_s, x_m), rightmost x over rows with
 /// y >= y_min where p > p_ambient (1 + threshold), interpolated between cell centres.
 std::unique_ptr<Observer> make_shock_position_observer(ShockPositionOptions options = {});
+
+/// Parcel writer: OUTDIR/vtk/parcels_NNNNNN.vtp + OUTDIR/parcels.pvd at each output.
+/// `parcels_of` adapts the state (e.g. its ParcelSystem) to array views; it is called at
+/// outputs only and the spans must stay valid until it is called again.
+using ParcelArraysOf = std::function<ParcelArraysView(const StateView&)>;
+std::unique_ptr<Observer> make_vtk_parcel_writer(ParcelArraysOf parcels_of);
+
+struct BandForceOptions {
+  std::vector<Band> bands;            ///< one series forces_<name> per band
+  BandAverageOptions averaging;       ///< tau bins and the contact-force window
+  ShockPositionOptions shock;         ///< how the shock arrival is detected
+  bool sample_every_step = true;      ///< false: sample at outputs only
+};
+/// Band-averaged force histories (series forces_<band>): at every step (or output) finds
+/// the shock position from the pressure field, sets each parcel's arrival time when the
+/// shock first reaches its initial x, and bins the band's parcels by t - t_arrival.
+/// `parcels_of` supplies everything but arrival_time (the observer keeps that, indexed
+/// like the parcel arrays, whose count must not change during the run).
+using BandParcelsOf = std::function<BandParcelsView(const StateView&)>;
+std::unique_ptr<Observer> make_band_force_observer(BandForceOptions options,
+                                                   BandParcelsOf parcels_of);
 
 }  // namespace dustlift

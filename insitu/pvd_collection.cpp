@@ -32,7 +32,7 @@ void PvdCollection::write() const {
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
     for (const auto& e : entries_)
-      out << fmt::format("    <DataSet timestep=\"{:.17g}\" part=\"0\" file=\"{}\"/>\n", e.time,
+      out << fmt::format("    <DataSet timestep=\"{}\" part=\"0\" file=\"{}\"/>\n", e.time,
                          e.file);
     out << "  </Collection>\n</VTKFile>\n";
     out.flush();

@@ -44,8 +44,8 @@ namespace {
 void write_csv_rows(std::ofstream& out, const SeriesTable& table, std::size_t from) {
   for (std::size_t r = from; r < table.rows(); ++r) {
     for (std::size_t k = 0; k < table.columns().size(); ++k) {
-      // 17 significant digits: the CSV round-trips doubles exactly.
-      out << (k ? "," : "") << fmt::format("{:.17g}", table.column(k)[r]);
+      // Shortest representation that reads back to the same double (fmt's default).
+      out << (k ? "," : "") << fmt::format("{}", table.column(k)[r]);
     }
     out << '\n';
   }

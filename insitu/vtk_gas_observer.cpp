@@ -1,6 +1,7 @@
 // The gas writer observer: StateView -> GasCellArrays -> .vtr + gas.pvd.
-// Kept apart from vtk_writers.cpp so code that only writes plain arrays (tests, tools)
-// does not need a linked GasSolver.
+// It calls no GasSolver member itself (the sound speed comes in as a function), so it
+// links and is tested without a gas solver; vtk_gas_observer_default.cpp binds
+// GasSolver::sound_speed.
 #include <stdexcept>
 
 #include "insitu/gas_cells.hpp"
@@ -12,24 +13,29 @@ namespace {
 
 class VtkGasWriter final : public Observer {
  public:
+  explicit VtkGasWriter(SoundSpeedFunction sound_speed) : sound_speed_(std::move(sound_speed)) {
+    if (!sound_speed_) throw std::invalid_argument("VtkGasWriter: no sound speed function");
+  }
+
   void on_output(const StateView& view) override {
-    if (!view.grid || !view.gas)
-      throw std::invalid_argument("VtkGasWriter: the state view has no grid or gas solver");
+    if (!view.grid) throw std::invalid_argument("VtkGasWriter: the state view has no grid");
     if (!files_) files_ = std::make_unique<VtkSeriesFiles>(view.output_dir, "gas", "vtr");
-    const GasSolver* gas = view.gas;
     gather_gas_cells(*view.grid, view.primitives,
-                     [gas](int i, int j) { return gas->sound_speed(i, j); }, cells_);
+                     [&](int i, int j) { return sound_speed_(view, i, j); }, cells_);
     write_gas_vtr(cells_, files_->next_path(view.time));
     files_->commit(view.time);
   }
 
  private:
+  SoundSpeedFunction sound_speed_;
   std::unique_ptr<VtkSeriesFiles> files_;
   GasCellArrays cells_;  // reused: no reallocation after the first output
 };
 
 }  // namespace
 
-std::unique_ptr<Observer> make_vtk_gas_writer() { return std::make_unique<VtkGasWriter>(); }
+std::unique_ptr<Observer> make_vtk_gas_writer(SoundSpeedFunction sound_speed) {
+  return std::make_unique<VtkGasWriter>(std::move(sound_speed));
+}
 
 }  // namespace dustlift

@@ -51,6 +51,9 @@ void configure_binary_zlib(vtkXMLWriter* writer, const std::string& path) {
   writer->SetDataModeToBinary();  // inline binary (base64) inside the XML
   writer->SetCompressorTypeToZLib();
   writer->SetHeaderTypeToUInt64();
+  // Fastest zlib level: deflate + base64 dominate the output time (~1.5 s for 360k cells
+  // of 8 arrays on a loaded 2-core machine); level 5 was ~25 % slower for ~0.1 % less disk.
+  writer->SetCompressionLevel(1);
 }
 
 void prepare_folder(const std::string& path) {

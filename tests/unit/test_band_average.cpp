@@ -1,6 +1,7 @@
 // Band-averaged force histories aligned to shock arrival: synthetic parcels with known
 // forces and arrival times give known bin averages exactly.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -92,7 +93,7 @@ TEST(BandAverage, KnownForcesAndArrivalsGiveKnownBinMeans) {
 
 TEST(BandAverage, TableHasOneRowPerFilledBinAndIsWrittenAsCsv) {
   Synthetic s;
-  const auto dir = std::filesystem::temp_directory_path() / "dustlift_band_series";
+  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_band_series_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   BandForceSeries series(dir.string(), {Band{"lower", 0.0, 0.1, 0.0, 0.002},
                                         Band{"upper", 0.0, 0.1, 0.002, 0.004}},

@@ -2,6 +2,7 @@
 // rendered by pvstates/render.py under `xvfb-run -a pvbatch`; the PNGs must exist, have a
 // plausible size and not be a uniform image (pvbatch exits 0 even when loading failed).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 
@@ -131,21 +134,39 @@ class Render : public ::testing::Test {
     // Each test its own folder: the shipped state must find data away from where it was saved.
     dir_ = fs::temp_directory_path() /
            (std::string("dustlift_render_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     write_synthetic_run(dir_);
   }
-  /// Runs render.py with extra arguments; returns wall seconds.
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);  // keep the PNGs and render.log of a failure
+  }
+  /// Runs render.py with extra arguments; returns wall seconds. `xvfb-run -a` picks a free
+  /// display by probing lock files, which races when two renders start at once (ctest -j2,
+  /// several users): start the probe at a per-process display number and retry once if
+  /// the X server connection failed.
   double render(const std::string& extra) {
     const std::string script = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/render.py";
-    const std::string command = "xvfb-run -a pvbatch " + script + " " + dir_.string() + " " +
-                                extra + " > " + (dir_ / "render.log").string() + " 2>&1";
+    const fs::path log = dir_ / "render.log";
     const auto start = std::chrono::steady_clock::now();
-    const int status = std::system(command.c_str());
+    int status = 0;
+    std::string command;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      const int display = 100 + static_cast<int>((::getpid() * 7 + attempt * 131) % 800);
+      command = "xvfb-run -a -n " + std::to_string(display) + " pvbatch " + script + " " +
+                dir_.string() + " " + extra + " > " + log.string() + " 2>&1";
+      status = std::system(command.c_str());
+      if (read_log(log).find("bad X server connection") == std::string::npos) break;
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_EQ(status, 0) << command << "\nsee " << (dir_ / "render.log");
+    EXPECT_EQ(status, 0) << command << "\nsee " << log;
     return seconds;
+  }
+  static std::string read_log(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
   fs::path dir_;
 };

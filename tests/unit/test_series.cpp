@@ -1,6 +1,7 @@
 // Series sink: CSV (header "name_unit", appended per output) and series.h5 (group per
 // series, dataset per column with units) stay equal to the table after repeated writes.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -13,7 +14,7 @@ namespace dustlift {
 namespace {
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_series_" + name);
+  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_series_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -1,6 +1,7 @@
 // The surface-height and shock-position observers on a synthetic StateView (no GasSolver):
 // rows per output, station columns, no duplicate row when on_finish follows an output.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -19,7 +20,7 @@ struct SyntheticState {
   std::filesystem::path dir;
 
   explicit SyntheticState(const std::string& name)
-      : dir(std::filesystem::temp_directory_path() / ("dustlift_observers_" + name)) {
+      : dir(std::filesystem::temp_directory_path() / ("dustlift_observers_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(dir);
   }
   /// Shock at x_s (p = 2e5 behind it); layer alpha_p = 0.5 in the lowest `layer_cells` rows.

@@ -30,7 +30,7 @@ std::vector<double> stretched_x() {
 /// Sine-shaped surface reaching into the stretched part of the y axis.
 double surface(double x) { return 3e-3 + 2.5e-3 * std::sin(2.0 * std::numbers::pi * x / 0.05); }
 
-TEST(SurfaceHeight, LinearProfileBelowTheSurfaceIsRecoveredExactly) {
+TEST(SurfaceHeight, LinearProfileIsRecoveredToRoundOff) {
   // alpha_p = k (s - y) everywhere (negative above s: only the interpolation is tested):
   // linear in y, so the threshold crossing s - threshold/k is found to round-off.
   const Grid2D grid(Axis(stretched_x(), 2), Axis(stretched_y(), 2));

@@ -1,6 +1,7 @@
 // The .vtr/.vtp writers: files load with VTK's XML readers, hold every named array with
 // the right tuple and component counts, values round-trip; the .pvd lists files and times.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -18,6 +19,7 @@
 #include <sstream>
 
 #include "insitu/gas_cells.hpp"
+#include "insitu/observers.hpp"
 #include "insitu/vtk_writers.hpp"
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
@@ -26,7 +28,7 @@ namespace dustlift {
 namespace {
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_test_" + name);
+  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -244,6 +246,46 @@ TEST(PvdCollection, ListsEveryFileWithItsTimeAndReplacesARepeatedTime) {
   EXPECT_FALSE(std::filesystem::exists(dir / "vtk/parcels_000003.vtp"));
   EXPECT_FALSE(std::filesystem::exists(dir / "parcels.pvd.tmp"));
   EXPECT_NE(text.find("type=\"Collection\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dustlift
+
+namespace dustlift {
+namespace {
+
+TEST(VtkGasWriterObserver, WritesOneFilePerOutputTimeAndAValidCollection) {
+  const auto dir = fresh_dir("observer");
+  const Grid2D grid(Axis({0.0, 0.1, 0.25, 0.45}, 2), Axis({0.0, 0.05, 0.12}, 2));
+  Field2D rho(grid, 1.2), u(grid, 30.0), v(grid, 40.0), p(grid, 1e5), T(grid, 290.0),
+      ag(grid, 0.75);
+  StateView view;
+  view.grid = &grid;
+  view.primitives = GasPrimitives{&rho, &u, &v, &p, &T, &ag};
+  view.output_dir = dir.string();
+  // Ideal-gas sound speed from the view's fields (no GasSolver in this test).
+  auto writer = make_vtk_gas_writer([](const StateView& s, int i, int j) {
+    return std::sqrt(1.4 * (*s.primitives.p)(i, j) / (*s.primitives.rho)(i, j));
+  });
+  writer->on_start(view);
+  view.time = 1e-5;
+  p.fill(2e5);
+  writer->on_output(view);
+  writer->on_finish(view);  // same time: overwrites gas_000001.vtr
+  const std::string pvd = read_text(dir / "gas.pvd");
+  EXPECT_NE(pvd.find("timestep=\"0\" part=\"0\" file=\"vtk/gas_000000.vtr\""), std::string::npos);
+  EXPECT_NE(pvd.find("timestep=\"1e-05\" part=\"0\" file=\"vtk/gas_000001.vtr\""),
+            std::string::npos)
+      << pvd;
+  EXPECT_FALSE(std::filesystem::exists(dir / "vtk" / "gas_000002.vtr"));
+  vtkNew<vtkXMLRectilinearGridReader> reader;
+  reader->SetFileName((dir / "vtk" / "gas_000001.vtr").string().c_str());
+  reader->Update();
+  vtkCellData* cd = reader->GetOutput()->GetCellData();
+  ASSERT_EQ(reader->GetOutput()->GetNumberOfCells(), 6);
+  EXPECT_NEAR(cd->GetArray("mach")->GetComponent(4, 0), 50.0 / std::sqrt(1.4 * 2e5 / 1.2), 1e-14);
+  EXPECT_NEAR(cd->GetArray("alpha_p")->GetComponent(4, 0), 0.25, 1e-15);
+  EXPECT_EQ(cd->GetArray("pressure")->GetComponent(5, 0), 2e5);
 }
 
 }  // namespace

@@ -1,0 +1,96 @@
+// Observers over parcel arrays: the .vtp writer and the band-averaged force series.
+// The parcel system is reached through adaptor functions (StateView -> array views), so
+// these compile and are tested without the DEM module.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "insitu/observers.hpp"
+#include "insitu/shock_position.hpp"
+#include "insitu/vorticity.hpp"
+#include "insitu/vtk_writers.hpp"
+
+namespace dustlift {
+namespace {
+
+class VtkParcelWriter final : public Observer {
+ public:
+  explicit VtkParcelWriter(ParcelArraysOf parcels_of) : parcels_of_(std::move(parcels_of)) {
+    if (!parcels_of_) throw std::invalid_argument("VtkParcelWriter: no parcel adaptor");
+  }
+  void on_output(const StateView& view) override {
+    if (!writer_) writer_ = std::make_unique<ParcelSeriesWriter>(view.output_dir);
+    writer_->write(parcels_of_(view), view.time);
+  }
+
+ private:
+  ParcelArraysOf parcels_of_;
+  std::unique_ptr<ParcelSeriesWriter> writer_;
+};
+
+class BandForceObserver final : public Observer {
+ public:
+  BandForceObserver(BandForceOptions options, BandParcelsOf parcels_of)
+      : options_(std::move(options)), parcels_of_(std::move(parcels_of)) {
+    if (!parcels_of_) throw std::invalid_argument("BandForceObserver: no parcel adaptor");
+    if (options_.bands.empty()) throw std::invalid_argument("BandForceObserver: no band");
+  }
+  void on_step(const StateView& view) override {
+    if (options_.sample_every_step) sample(view);
+  }
+  void on_output(const StateView& view) override {
+    sample(view);
+    series_->write();
+  }
+
+ private:
+  void sample(const StateView& view) {
+    if (sampled_ && view.time == last_time_) return;
+    if (!view.grid || !view.primitives.p)
+      throw std::invalid_argument("BandForceObserver: the state view has no pressure field");
+    const Grid2D& grid = *view.grid;
+    pressure_.resize(grid.interior_cells());
+    for (int j = 0; j < grid.ny(); ++j)
+      for (int i = 0; i < grid.nx(); ++i)
+        pressure_[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] =
+            (*view.primitives.p)(i, j);
+    if (x_centers_.empty()) {
+      x_centers_ = interior_centers(grid.x());
+      y_centers_ = interior_centers(grid.y());
+    }
+    const double shock_x = shock_position(x_centers_, y_centers_, pressure_,
+                                          options_.shock.p_ambient, options_.shock.threshold,
+                                          options_.shock.y_min);
+    BandParcelsView parcels = parcels_of_(view);
+    if (arrival_.empty()) arrival_.assign(parcels.count, std::numeric_limits<double>::quiet_NaN());
+    if (arrival_.size() != parcels.count)
+      throw std::invalid_argument("BandForceObserver: the number of parcels changed");
+    update_arrival_times(shock_x, view.time, parcels.initial_position.x, arrival_);
+    parcels.arrival_time = arrival_;
+    if (!series_)
+      series_ = std::make_unique<BandForceSeries>(view.output_dir, options_.bands,
+                                                  options_.averaging);
+    series_->add(parcels, view.time);
+    sampled_ = true;
+    last_time_ = view.time;
+  }
+  BandForceOptions options_;
+  BandParcelsOf parcels_of_;
+  std::unique_ptr<BandForceSeries> series_;
+  std::vector<double> arrival_, pressure_, x_centers_, y_centers_;
+  bool sampled_ = false;
+  double last_time_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Observer> make_vtk_parcel_writer(ParcelArraysOf parcels_of) {
+  return std::make_unique<VtkParcelWriter>(std::move(parcels_of));
+}
+
+std::unique_ptr<Observer> make_band_force_observer(BandForceOptions options,
+                                                   BandParcelsOf parcels_of) {
+  return std::make_unique<BandForceObserver>(std::move(options), std::move(parcels_of));
+}
+
+}  // namespace dustlift

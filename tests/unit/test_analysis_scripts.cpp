@@ -1,0 +1,127 @@
+// The analysis scripts run on files written by the C++ writers: make_figures.py on series
+// (shock speed from the fit, one PNG per series family) and sod_compare.py on a .vtr.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "insitu/band_average.hpp"
+#include "insitu/gas_cells.hpp"
+#include "insitu/series_table.hpp"
+#include "insitu/vtk_writers.hpp"
+
+namespace dustlift {
+namespace {
+
+namespace fs = std::filesystem;
+const char* kPython = "/usr/bin/python3";
+
+fs::path fresh_dir(const std::string& name) {
+  const auto dir = fs::temp_directory_path() /
+                   ("dustlift_analysis_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Runs a command, returns (exit status, stdout + stderr).
+std::pair<int, std::string> run(const std::string& command) {
+  std::string output;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::array<char, 512> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  return {::pclose(pipe), output};
+}
+
+std::string script(const std::string& name) {
+  return std::string(kPython) + " " + DUSTLIFT_SOURCE_DIR + "/analysis/" + name;
+}
+
+class AnalysisScripts : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(kPython) || run(std::string(kPython) + " -c 'import numpy, matplotlib'").first != 0)
+      FAIL() << "/usr/bin/python3 with numpy and matplotlib is needed (scripts/install-deps.sh: "
+                "python3-numpy python3-matplotlib)";
+  }
+};
+
+TEST_F(AnalysisScripts, MakeFiguresFitsTheShockSpeedAndPlotsEverySeriesFamily) {
+  const auto dir = fresh_dir("figures");
+  SeriesSink sink(dir.string());
+  SeriesTable shock("shock_position", {{"time", "s"}, {"x", "m"}});
+  SeriesTable surface("surface_height", {{"time", "s"}, {"x", "m"}, {"height", "m"}});
+  for (int k = 0; k < 8; ++k) {
+    const double t = k * 2.5e-5;
+    shock.append_row(std::vector{t, 0.05 + 500.9 * t});
+    for (int i = 0; i < 20; ++i) surface.append_row(std::vector{t, 0.01 * i, 0.002 + 1e-4 * k * i});
+    sink.write(shock);
+    sink.write(surface);
+  }
+  std::vector<double> x0{0.01}, y0{0.001}, y{0.0012}, fx{0.1}, fy{0.2}, arrival{0.0}, w{5.0};
+  BandForceSeries bands(dir.string(), {Band{"top", 0.0, 0.1, 0.0, 0.002}});
+  for (int k = 0; k < 5; ++k) {
+    BandParcelsView v;
+    v.count = 1;
+    v.initial_position = {x0, y0};
+    v.y = y;
+    v.force_drag = {fx, fy};
+    v.arrival_time = arrival;
+    v.gas_rotation = w;
+    bands.add(v, k * 1e-6);
+  }
+  bands.write();
+  const auto [status, output] = run(script("make_figures.py") + " " + dir.string());
+  ASSERT_EQ(status, 0) << output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(output, m, std::regex("shock speed \\(linear fit\\): ([0-9.eE+-]+) m/s")))
+      << output;
+  EXPECT_NEAR(std::stod(m[1]), 500.9, 1e-6);
+  for (const char* png : {"shock_position.png", "surface_height.png", "forces_top.png",
+                          "magnus_inputs_top.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "figures" / png)) << png << "\n" << output;
+    if (fs::exists(dir / "figures" / png)) {
+      EXPECT_GT(fs::file_size(dir / "figures" / png), 10000u) << png;
+    }
+  }
+  fs::remove_all(dir);
+}
+
+TEST_F(AnalysisScripts, SodCompareReadsTheLastVtrAndMeasuresTheL1Error) {
+  // Equal left and right states: the exact solution is the uniform state, so a file with
+  // density raised by 0.01 everywhere has density L1 error 0.01 and the others 0.
+  const auto dir = fresh_dir("sod");
+  std::ofstream(dir / "scene.resolved.toml")
+      << "[gas]\ngamma = 1.4\n[initial]\nkind = \"riemann\"\nposition = 0.5\n"
+         "left = { rho = 1.0, p = 1.0, u = 0.0 }\nright = { rho = 1.0, p = 1.0, u = 0.0 }\n";
+  GasCellArrays g;
+  for (int i = 0; i <= 50; ++i) g.x_nodes.push_back(i / 50.0);
+  g.y_nodes = {0.0, 0.01, 0.02, 0.03};
+  g.resize(g.nx(), g.ny());
+  VtkSeriesFiles files(dir.string(), "gas", "vtr");
+  for (double t : {0.0, 0.1}) {
+    for (std::size_t k = 0; k < g.cells(); ++k) {
+      g.density[k] = t > 0 ? 1.01 : 5.0;  // the t = 0 file must not be the one read
+      g.pressure[k] = 1.0;
+    }
+    write_gas_vtr(g, files.next_path(t));
+    files.commit(t);
+  }
+  const auto [status, output] = run(script("sod_compare.py") + " " + dir.string());
+  ASSERT_EQ(status, 0) << output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(output, m, std::regex("density +L1 error ([0-9.eE+-]+)"))) << output;
+  EXPECT_NEAR(std::stod(m[1]), 0.01, 1e-12);
+  ASSERT_TRUE(std::regex_search(output, m, std::regex("pressure +L1 error ([0-9.eE+-]+)"))) << output;
+  EXPECT_LT(std::stod(m[1]), 1e-15);
+  EXPECT_TRUE(fs::exists(dir / "figures" / "sod_compare.png"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dustlift
