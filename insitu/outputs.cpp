@@ -1,26 +1,117 @@
 #include "insitu/outputs.hpp"
 
+#include <cmath>
+
 #include "insitu/observers.hpp"
+#include "solver/coupling/gas_particle_coupling.hpp"
+#include "solver/dem/parcel_system.hpp"
 
 namespace dustlift {
+namespace {
+
+/// Parcel arrays straight from the ParcelSystem (no copy): the writer reads them at outputs.
+ParcelArraysView parcel_arrays_of(const StateView& v) {
+  const ParcelSystem& p = *v.parcels;
+  ParcelArraysView a;
+  a.count = p.size();
+  a.position = {p.x, p.y};
+  a.velocity = {p.vx, p.vy};
+  a.angular_velocity = p.omega;
+  a.temperature = p.temperature;
+  a.diameter = p.diameter;
+  a.initial_position = {p.x_initial, p.y_initial};
+  a.force_contact = {p.contact_fx, p.contact_fy};
+  a.force_drag = {p.drag_fx, p.drag_fy};
+  a.force_magnus = {p.magnus_fx, p.magnus_fy};
+  a.force_pressure = {p.pressure_fx, p.pressure_fy};
+  return a;
+}
+
+/// The band observer keeps per-parcel arrival times indexed like the arrays it is given, but
+/// the DEM re-sorts its parcels by cell; so the band view is a copy in parcel-id order.
+class BandArraysById {
+ public:
+  BandParcelsView operator()(const StateView& v) {
+    const ParcelSystem& p = *v.parcels;
+    const std::size_t n = p.size();
+    for (auto* c : {&x0_, &y0_, &y_, &fcx_, &fcy_, &fdx_, &fdy_, &fmx_, &fmy_, &fpx_, &fpy_, &wp_})
+      c->resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(p.id[k]);
+      x0_[i] = p.x_initial[k];
+      y0_[i] = p.y_initial[k];
+      y_[i] = p.y[k];
+      fcx_[i] = p.contact_fx[k];
+      fcy_[i] = p.contact_fy[k];
+      fdx_[i] = p.drag_fx[k];
+      fdy_[i] = p.drag_fy[k];
+      fmx_[i] = p.magnus_fx[k];
+      fmy_[i] = p.magnus_fy[k];
+      fpx_[i] = p.pressure_fx[k];
+      fpy_[i] = p.pressure_fy[k];
+      wp_[i] = p.omega[k];
+    }
+    BandParcelsView b;
+    b.count = n;
+    b.initial_position = {x0_, y0_};
+    b.y = y_;
+    b.force_contact = {fcx_, fcy_};
+    b.force_drag = {fdx_, fdy_};
+    b.force_magnus = {fmx_, fmy_};
+    b.force_pressure = {fpx_, fpy_};
+    b.particle_rotation = wp_;
+    if (v.coupling != nullptr) {
+      b.relative_rotation = v.coupling->relative_rotation_by_id();
+      b.gas_rotation = v.coupling->gas_rotation_by_id();
+    }
+    return b;
+  }
+
+ private:
+  std::vector<double> x0_, y0_, y_, fcx_, fcy_, fdx_, fdy_, fmx_, fmy_, fpx_, fpy_, wp_;
+};
+
+}  // namespace
 
 std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
                                                              const std::string&) {
   std::vector<std::unique_ptr<Observer>> observers;
-  if (scene.output.vtk) observers.push_back(make_vtk_gas_writer());
+  const OutputConfig& out = scene.output;
+  if (out.vtk) observers.push_back(make_vtk_gas_writer());
 
   // Shock position along x: the pre-shock pressure is known for shock and Riemann
   // starts (the state the shock runs into); otherwise each row's downstream cell is used.
+  // Over a dust layer only the rows above it are searched (the paper's shock "above the layer").
   const InitialCondition& ic = scene.initial;
+  ShockPositionOptions shock;
+  shock.threshold = out.shock_threshold;
+  if (ic.kind == InitialCondition::Kind::Shock) shock.p_ambient = ic.state.p;
+  if (ic.kind == InitialCondition::Kind::Riemann) shock.p_ambient = ic.right.p;
+  if (scene.particles.enabled) shock.y_min = scene.particles.layer.y_max;
   if (ic.axis == 'x') {
-    ShockPositionOptions shock;
-    if (ic.kind == InitialCondition::Kind::Shock) shock.p_ambient = ic.state.p;
-    if (ic.kind == InitialCondition::Kind::Riemann) shock.p_ambient = ic.right.p;
     // A Riemann start with the high pressure on the right sends its shock to -x: skip.
     const bool rightward = ic.kind != InitialCondition::Kind::Riemann || ic.left.p > ic.right.p;
     if (rightward) observers.push_back(make_shock_position_observer(shock));
   }
-  if (scene.particles.enabled) observers.push_back(make_surface_height_observer());
+  if (!scene.particles.enabled) return observers;
+
+  if (out.vtk) observers.push_back(make_vtk_parcel_writer(parcel_arrays_of));
+  SurfaceHeightOptions surface;
+  surface.threshold = out.surface_threshold;
+  surface.stations_x = out.surface_stations;
+  observers.push_back(make_surface_height_observer(surface));
+
+  if (!out.bands.empty() && ic.axis == 'x') {
+    BandForceOptions bands;
+    for (const auto& b : out.bands) bands.bands.push_back({b.name, b.x_min, b.x_max, b.y_min, b.y_max});
+    bands.averaging.tau_min = 0.0;
+    bands.averaging.tau_max = out.band_duration;
+    bands.averaging.bin_width = out.band_bin_width;
+    bands.averaging.contact_window = out.contact_window;
+    bands.shock = shock;
+    bands.sample_every_step = true;
+    observers.push_back(make_band_force_observer(bands, BandArraysById{}));
+  }
   return observers;
 }
 

@@ -7,7 +7,7 @@
 
 #include "insitu/observers.hpp"
 #include "insitu/shock_position.hpp"
-#include "insitu/vorticity.hpp"
+#include "solver/core/derivatives.hpp"
 #include "insitu/vtk_writers.hpp"
 
 namespace dustlift {

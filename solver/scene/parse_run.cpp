@@ -44,9 +44,45 @@ void parse_grid(TableReader t, GridConfig& grid) {
   t.finish();
 }
 
-void parse_output(TableReader t, OutputConfig& out) {
+void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem) {
   out.interval = t.number("interval", out.interval, Range::non_negative());
   out.vtk = t.boolean("vtk", out.vtk);
+  out.shock_threshold = t.number("shock_threshold", out.shock_threshold, Range::open(0.0, 10.0));
+  if (!dem.enabled) {
+    t.finish();
+    return;
+  }
+  const LayerConfig& L = dem.layer;
+  out.surface_threshold = t.number("surface_threshold", out.surface_threshold, Range::open(0.0, 1.0));
+  // Default stations: a quarter, half and three quarters along the layer.
+  const double len = L.x_max - L.x_min;
+  out.surface_stations = t.number_list("surface_stations", {L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.x_min + 0.75 * len});
+  out.band_bin_width = t.number("band_bin_width", out.band_bin_width, Range::positive());
+  out.band_duration = t.number("band_duration", run.end_time, Range::positive());
+  out.contact_window = t.number("contact_window", out.contact_window, Range::positive());
+  auto bands = t.table_array("bands");
+  if (bands.empty()) {
+    // The paper's bands (section 3.4), placed relative to the layer: x over the second
+    // quarter of the layer (100-200 mm of 400 mm), the top 0.1 mm and 0.1 mm around mid-depth.
+    const double top = L.y_max, mid = 0.5 * (L.y_min + L.y_max);
+    out.bands = {{"surface", L.x_min + 0.25 * len, L.x_min + 0.5 * len, top - 0.1e-3, top},
+                 {"middle", L.x_min + 0.25 * len, L.x_min + 0.5 * len, mid - 0.1e-3, mid + 0.1e-3}};
+  }
+  for (auto& b : bands) {
+    BandConfig c;
+    c.name = b.string("name", "");
+    if (c.name.empty() || c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos) {
+      b.fail("name", "a band needs a name of lower-case letters, digits and _ (it names the series file)");
+    }
+    c.x_min = b.required_number("x_min");
+    c.x_max = b.required_number("x_max");
+    c.y_min = b.required_number("y_min");
+    c.y_max = b.required_number("y_max");
+    if (!(c.x_max > c.x_min)) b.fail("x_max", "must be greater than x_min");
+    if (!(c.y_max > c.y_min)) b.fail("y_max", "must be greater than y_min");
+    b.finish();
+    out.bands.push_back(c);
+  }
   t.finish();
 }
 

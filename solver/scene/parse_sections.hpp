@@ -12,7 +12,7 @@ void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo
 void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo);
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary);
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
-void parse_output(TableReader t, OutputConfig& out);
+void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem);
 
 /// A gas state table: p and exactly one of rho or T, optional u, v.
 PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo);

@@ -20,9 +20,22 @@ struct RunConfig {
   double progress_interval = 2.0;  ///< s of wall time between progress lines
 };
 
+/// A group of parcels chosen by where they started (paper Figs. 10 and 12).
+struct BandConfig {
+  std::string name;
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< m, box of initial positions
+};
+
 struct OutputConfig {
   double interval = 0.0;  ///< s of simulated time between VTK outputs; 0: initial + final only
   bool vtk = true;        ///< write gas.pvd / parcels.pvd
+  double surface_threshold = 1e-4;        ///< alpha_p of the dust surface (paper section 3.2)
+  std::vector<double> surface_stations;   ///< m, x of the h(t) stations
+  std::vector<BandConfig> bands;          ///< force-history bands (default: the paper's two)
+  double band_bin_width = 1e-6;           ///< s, bins of t - t_arrival
+  double band_duration = 0.0;             ///< s, last bin end (default: run end time)
+  double contact_window = 1e-5;           ///< s, contact-force averaging window (paper: 0.01 ms)
+  double shock_threshold = 0.05;          ///< relative pressure rise marking the shock
 };
 
 struct GridConfig {

@@ -72,7 +72,7 @@ Scene parse_scene(const std::string& text, const std::string& name,
   parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo);
   parse_particles(root.table("particles"), scene.particles, scene.grid, scene.gas.boundary);
   parse_coupling(root.table("coupling"), scene.coupling, scene.particles, scene.grid);
-  parse_output(root.table("output"), scene.output);
+  parse_output(root.table("output"), scene.output, scene.run, scene.particles);
   root.finish();
   check_cross_section(scene);
 
