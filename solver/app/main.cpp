@@ -69,7 +69,12 @@ void print_info(const Scene& scene, const Simulation& sim) {
              "min dx = {:g} m, min dy = {:g} m\n",
              g.nx(), g.ny(), g.interior_cells(), g.x().start(), g.x().end(), g.y().start(),
              g.y().end(), g.x().min_width(), g.y().min_width());
-  fmt::print("parcels: {}\n", scene.particles.enabled ? "enabled" : "0 (gas only)");
+  if (const ParcelSystem* p = sim.parcels()) {
+    fmt::print("parcels: {}; DEM sub-step (eq. 18, nu_DEM {:g}) = {:.4g} s, ~{} per CFD step\n", p->size(),
+               scene.particles.courant, p->stable_time_step(), p->substeps_for(sim.gas().stable_dt()));
+  } else {
+    fmt::print("parcels: 0 (gas only)\n");
+  }
   const double dt0 = sim.gas().stable_dt();
   fmt::print("time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f}\n",
              scene.run.end_time, scene.gas.scheme.cfl, dt0, std::ceil(scene.run.end_time / dt0));
