@@ -37,7 +37,7 @@ void GasCellArrays::check_sizes() const {
                                   std::to_string(cells()));
 }
 
-void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas,
+void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
                       const std::function<double(int, int)>& sound_speed, GasCellArrays& out) {
   if (!gas.rho || !gas.u || !gas.v || !gas.p || !gas.T || !gas.alpha_g)
     throw std::invalid_argument("gather_gas_cells: a primitive field is missing");
@@ -54,7 +54,7 @@ void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas,
       out.velocity_y[k] = v;
       out.pressure[k] = (*gas.p)(i, j);
       out.temperature[k] = (*gas.T)(i, j);
-      out.alpha_p[k] = 1.0 - (*gas.alpha_g)(i, j);
+      out.alpha_p[k] = alpha_p != nullptr ? (*alpha_p)(i, j) : 1.0 - (*gas.alpha_g)(i, j);
       out.mach[k] = std::hypot(u, v) / sound_speed(i, j);
     }
   }

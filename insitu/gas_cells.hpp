@@ -36,7 +36,8 @@ struct GasCellArrays {
 
 /// Fills `out` from the primitive fields (interior cells) and computes alpha_p,
 /// vorticity and mach = sqrt(u^2+v^2) / sound_speed(i, j).
-void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas,
+/// alpha_p: the deposited particle volume fraction, or null to use 1 - alpha_g.
+void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
                       const std::function<double(int, int)>& sound_speed, GasCellArrays& out);
 
 }  // namespace dustlift

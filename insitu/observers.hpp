@@ -60,4 +60,12 @@ using BandParcelsOf = std::function<BandParcelsView(const StateView&)>;
 std::unique_ptr<Observer> make_band_force_observer(BandForceOptions options,
                                                    BandParcelsOf parcels_of);
 
+/// Window of the near-layer field series (paper Fig. 13).
+struct NearLayerOptions {
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< m
+};
+/// Series near_layer: time_s, x_m, y_m, u, v, vorticity (omega_z), alpha_p of every cell whose
+/// centre lies in the window, at each output time.
+std::unique_ptr<Observer> make_near_layer_observer(NearLayerOptions options);
+
 }  // namespace dustlift

@@ -101,6 +101,12 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
   surface.stations_x = out.surface_stations;
   observers.push_back(make_surface_height_observer(surface));
 
+  // Fig. 13: u and vorticity from the floor to 5 mm above the layer, over the second
+  // quarter of the layer (the paper's analysis region, 100-200 mm of 400 mm).
+  const LayerConfig& L = scene.particles.layer;
+  const double len = L.x_max - L.x_min;
+  observers.push_back(make_near_layer_observer({L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.y_min, L.y_max + 5e-3}));
+
   if (!out.bands.empty() && ic.axis == 'x') {
     BandForceOptions bands;
     for (const auto& b : out.bands) bands.bands.push_back({b.name, b.x_min, b.x_max, b.y_min, b.y_max});

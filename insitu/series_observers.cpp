@@ -41,7 +41,11 @@ class SurfaceHeightObserver final : public Observer {
     if (written_ && view.time == last_time_) return;  // on_finish right after an output
     if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
     const Grid2D& grid = *view.grid;
-    interior(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
+    if (view.alpha_p != nullptr) {
+      interior(grid, *view.alpha_p, alpha_p_, [](double ap) { return ap; });
+    } else {
+      interior(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
+    }
     const auto xc = interior_centers(grid.x());
     const auto heights = dust_surface_height(interior_centers(grid.y()), alpha_p_,
                                              static_cast<std::size_t>(grid.nx()),

@@ -20,7 +20,7 @@ class VtkGasWriter final : public Observer {
   void on_output(const StateView& view) override {
     if (!view.grid) throw std::invalid_argument("VtkGasWriter: the state view has no grid");
     if (!files_) files_ = std::make_unique<VtkSeriesFiles>(view.output_dir, "gas", "vtr");
-    gather_gas_cells(*view.grid, view.primitives,
+    gather_gas_cells(*view.grid, view.primitives, view.alpha_p,
                      [&](int i, int j) { return sound_speed_(view, i, j); }, cells_);
     write_gas_vtr(cells_, files_->next_path(view.time));
     files_->commit(view.time);

@@ -20,6 +20,9 @@ struct StateView {
   GasPrimitives primitives{};
   const ParcelSystem* parcels = nullptr;  ///< null in a gas-only scene
   const GasParticleCoupling* coupling = nullptr;  ///< null in a gas-only scene
+  /// Particle volume fraction as deposited (eq. 12, before the porosity cap); null in a
+  /// gas-only scene. Use it rather than 1 - alpha_g, which one-way coupling leaves at 0.
+  const Field2D* alpha_p = nullptr;
   double time = 0.0;                      ///< s
   long long step = 0;
   std::string output_dir;                 ///< the run's output folder

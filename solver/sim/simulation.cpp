@@ -46,6 +46,7 @@ StateView Simulation::view(const std::string& output_dir) const {
   v.primitives = gas_->primitives();
   v.parcels = parcels_.get();
   v.coupling = coupling_.get();
+  v.alpha_p = coupling_ ? &coupling_->alpha_p() : nullptr;
   v.time = time_;
   v.step = step_;
   v.output_dir = output_dir;

@@ -80,4 +80,29 @@ TEST(SeriesObservers, SurfaceHeightProfileSkipsEmptyColumnsAndStationsInterpolat
 }
 
 }  // namespace
+TEST(SeriesObservers, NearLayerSeriesHoldsTheWindowWithExactLinearVorticity) {
+  // u = 3 y + 2 x, v = -5 x on a stretched grid: omega_z = dv/dx - du/dy = -5 - 3 exactly.
+  SyntheticState s("near_layer");
+  for (int j = 0; j < s.grid.ny(); ++j)
+    for (int i = 0; i < s.grid.nx(); ++i) {
+      s.u(i, j) = 3.0 * s.grid.y().center(j) + 2.0 * s.grid.x().center(i);
+      s.v(i, j) = -5.0 * s.grid.x().center(i);
+    }
+  s.set(0.0, 2);
+  auto observer = make_near_layer_observer({0.01, 0.04, 0.0, 0.004});
+  observer->on_output(s.view(2e-5));
+  observer->on_finish(s.view(2e-5));  // no duplicate rows
+  const auto t = read_series_h5((s.dir / "series" / "series.h5").string(), "near_layer");
+  // Centres x = 0.015, 0.025, 0.035 and y = 0.0005, 0.0015, 0.00275 lie in the window.
+  ASSERT_EQ(t.rows(), 9u);
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    EXPECT_EQ(t.column(0)[r], 2e-5);
+    EXPECT_NEAR(t.column(3)[r], 3.0 * t.column(2)[r] + 2.0 * t.column(1)[r], 1e-15);
+    EXPECT_NEAR(t.column(5)[r], -8.0, 1e-9);
+  }
+  EXPECT_EQ(t.columns()[5].unit, "1/s");
+  EXPECT_TRUE(std::filesystem::exists(s.dir / "series" / "near_layer.csv"));
+  std::filesystem::remove_all(s.dir);
+}
+
 }  // namespace dustlift

@@ -142,7 +142,7 @@ TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
   u(-1, 0) = 1e9;  // ghosts must not leak into the output
   const GasPrimitives prims{&rho, &u, &v, &p, &T, &ag};
   GasCellArrays out;
-  gather_gas_cells(grid, prims, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
+  gather_gas_cells(grid, prims, nullptr, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
   ASSERT_EQ(out.nx(), 4u);
   ASSERT_EQ(out.ny(), 3u);
   EXPECT_EQ(out.x_nodes, grid.x().interior_faces());
