@@ -240,11 +240,12 @@ struct GasSolver::Impl {
   // ---------------------------------------------------------------- fluxes
   template <class Th>
   FaceState face_state(const Th& th, double r, double uu, double vv, double pp) const {
-    const double t = pp / (r * R);
+    const double inv_r = 1.0 / r;
+    const double t = pp * inv_r / R;
     double h, cp;
     th.enthalpy_and_cp(t, h, cp);
-    const double gamma = cp / (cp - R);
-    return {r, uu, vv, pp, h + 0.5 * (uu * uu + vv * vv), std::sqrt(gamma * R * t)};
+    // c^2 = gamma R T = cp/(cp - R) p/rho (one division).
+    return {r, uu, vv, pp, h + 0.5 * (uu * uu + vv * vv), std::sqrt(cp * pp / ((cp - R) * r))};
   }
 
   /// Inviscid SLAU2 flux through the face between cells c - step and c (normal (nx, ny)).
@@ -467,8 +468,36 @@ struct GasSolver::Impl {
     }
   }
 
+  /// Checks the current primitives (as left by the last step or refresh_primitives(), e.g.
+  /// after the coupling changed the state) so a bad input is reported where it is, not
+  /// where its NaN spread to during the first stage.
+  void check_current_state() {
+#pragma omp parallel for if (threaded) schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      int first_fault = -1;
+      CellFault kind = CellFault::None;
+      for (int i = 0; i < nx && first_fault < 0; ++i) {
+        const std::size_t c = at(i, j);
+        bool finite = true;
+        for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(U[k].data()[c]);
+        if (!finite) {
+          kind = CellFault::NotFinite;
+        } else if (!(rho.data()[c] > 0.0)) {
+          kind = CellFault::Density;
+        } else if (!(p.data()[c] > 0.0)) {
+          kind = CellFault::Pressure;
+        }
+        if (kind != CellFault::None) first_fault = i;
+      }
+      fault_i[static_cast<std::size_t>(j)] = first_fault;
+      fault_kind[static_cast<std::size_t>(j)] = kind;
+    }
+    throw_on_fault();
+  }
+
   template <class Th>
   void rk3_step(const Th& th, double dt) {
+    check_current_state();
     fill_porosity_ghosts();
     for (int k = 0; k < 4; ++k) U0[k].raw() = U[k].raw();  // same size: no allocation
     stage(th, dt, 0.0, 1.0);
