@@ -107,10 +107,18 @@ class ThermallyPerfectAir {
   double absolute_enthalpy(double T) const { return R_ * nasa7::h_over_r(range(T), T); }
   double internal_energy(double T) const { return enthalpy(T) - R_ * T; }
   double sound_speed_squared(double T) const { return gamma(T) * R_ * T; }
+  /// Same values as enthalpy() and cp(); the range is chosen by selects (no branch) so that
+  /// face loops vectorise.
   void enthalpy_and_cp(double T, double& h, double& cp) const {
-    const Nasa7& c = range(T);
-    h = R_ * (nasa7::h_over_r(c, T) - nasa7::kAirLow.a[5]);
-    cp = R_ * nasa7::cp_over_r(c, T);
+    // Both ranges evaluated, then one select: branch-free, so face loops vectorise.
+    using nasa7::kAirHigh;
+    using nasa7::kAirLow;
+    const double cp_low = nasa7::cp_over_r(kAirLow, T), cp_high = nasa7::cp_over_r(kAirHigh, T);
+    const double h_low = nasa7::h_over_r(kAirLow, T) - kAirLow.a[5];
+    const double h_high = nasa7::h_over_r(kAirHigh, T) - kAirLow.a[5];
+    const bool low = T < nasa7::kRangeBreak;
+    cp = R_ * (low ? cp_low : cp_high);
+    h = R_ * (low ? h_low : h_high);
   }
 
   /// T from e(T) = h(T) - RT: Newton warm-started at `guess`, kept inside a shrinking

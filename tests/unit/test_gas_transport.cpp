@@ -30,6 +30,17 @@ TEST(GordonWilke, AirValuesAt300And384K) {
   expect_rel(a384.lambda, 3.18296e-2, 2e-5);
 }
 
+TEST(GordonWilke, FastAirPathEqualsGenericWilkeRule) {
+  for (double T : {200.0, 300.0, 384.2, 999.0, 1000.0, 2500.0}) {
+    const TransportProperties fast = air_transport_gordon_wilke(T);
+    const TransportProperties generic =
+        wilke_binary_mixture(oxygen_transport(T), nasa7::kMoleFractionO2, nasa7::kMolarMassO2, nitrogen_transport(T),
+                             nasa7::kMoleFractionN2, nasa7::kMolarMassN2);
+    expect_rel(fast.mu, generic.mu, 1e-13);
+    expect_rel(fast.lambda, generic.lambda, 1e-13);
+  }
+}
+
 TEST(GordonWilke, WilkeRuleOfIdenticalSpeciesIsIdentity) {
   const TransportProperties s{2e-5, 3e-2};
   const TransportProperties m = wilke_binary_mixture(s, 0.3, 0.028, s, 0.7, 0.028);
