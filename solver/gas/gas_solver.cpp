@@ -66,6 +66,7 @@ struct GasSolver::Impl {
   GasConfig config;
   Thermo thermo;
   MusclSettings muscl;
+  GordonWilkeAirTable air_table;
   bool viscous;
   int nx, ny, ng, stride;
   /// Small grids run on one thread: the fork/join barriers would cost more than the work.
@@ -150,11 +151,16 @@ struct GasSolver::Impl {
     v.data()[c] = vv;
     T.data()[c] = t;
     p.data()[c] = pp;
+    return classify(c, pp);
+  }
+
+  /// The checks of one cell after its primitives were set.
+  CellFault classify(std::size_t c, double pp) const {
     if (!(std::isfinite(U[0].data()[c]) && std::isfinite(U[1].data()[c]) && std::isfinite(U[2].data()[c]) &&
           std::isfinite(U[3].data()[c]))) {
       return CellFault::NotFinite;
     }
-    if (!(r > 0.0)) return CellFault::Density;
+    if (!(rho.data()[c] > 0.0)) return CellFault::Density;
     if (!(pp > 0.0) || !std::isfinite(pp)) return CellFault::Pressure;
     return CellFault::None;
   }
@@ -271,15 +277,20 @@ struct GasSolver::Impl {
             alpha.data() + c_m1, alpha.data() + c_m1 + step, faces};
   }
 
+  /// Transport properties at temperature t (the Gordon-Wilke model through its table).
+  template <class Th>
+  TransportProperties transport_at(const Th& th, double t) const {
+    if (config.transport.model == TransportModel::GordonWilke) return air_table(t);
+    return transport_properties(config.transport, t, th.cp(t));
+  }
+
   template <class Th>
   void compute_transport(const Th& th) {
-    const TransportConfig& tc = config.transport;
 #pragma omp for schedule(static)
     for (int j = -1; j <= ny; ++j) {
       for (int i = -1; i <= nx; ++i) {
         const std::size_t c = at(i, j);
-        const double t = T.data()[c];
-        const TransportProperties tp = transport_properties(tc, t, th.cp(t));
+        const TransportProperties tp = transport_at(th, T.data()[c]);
         mu.data()[c] = tp.mu;
         lambda.data()[c] = tp.lambda;
       }
@@ -370,20 +381,23 @@ struct GasSolver::Impl {
   void update(const Th& th, double dt, double c_old, double c_new) {
     const std::size_t nfx = static_cast<std::size_t>(nx + 1);
     const std::size_t nfy = static_cast<std::size_t>(nx);
+    const auto sx = static_cast<std::size_t>(stride);
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
       const double idy = geo(inv_dy, j);
-      int first_fault = -1;
-      CellFault kind = CellFault::None;
+      // The flux phase is over (barrier), so this thread's scratch rows are free again.
+      const FaceRowScratch s = thread_scratch();
+      double* e_row = s.rho_l;
+      double* guess_row = s.u_l;
+      const std::size_t c0 = at(0, j);
       for (int i = 0; i < nx; ++i) {
-        const std::size_t c = at(i, j);
+        const std::size_t c = c0 + static_cast<std::size_t>(i);
         const double idx = geo(inv_dx, i);
         const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i);
         const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i);
         const double* a = alpha.data();
         const double ax_plus = 0.5 * (a[c] + a[c + 1]), ax_minus = 0.5 * (a[c - 1] + a[c]);
-        const double ay_plus = 0.5 * (a[c] + a[c + static_cast<std::size_t>(stride)]);
-        const double ay_minus = 0.5 * (a[c - static_cast<std::size_t>(stride)] + a[c]);
+        const double ay_plus = 0.5 * (a[c] + a[c + sx]), ay_minus = 0.5 * (a[c - sx] + a[c]);
         const double pc = p.data()[c];
         double rhs[4];
         for (int k = 0; k < 4; ++k) {
@@ -392,11 +406,26 @@ struct GasSolver::Impl {
         }
         rhs[1] += pc * (ax_plus - ax_minus) * idx;
         rhs[2] += pc * (ay_plus - ay_minus) * idy;
+        double q[4];
         for (int k = 0; k < 4; ++k) {
-          double& q = U[k].data()[c];
-          q = c_old * U0[k].data()[c] + c_new * (q + dt * rhs[k]);
+          q[k] = c_old * U0[k].data()[c] + c_new * (U[k].data()[c] + dt * rhs[k]);
+          U[k].data()[c] = q[k];
         }
-        const CellFault f = primitive_from_conserved(th, c);
+        const double r = q[0] / a[c], uu = q[1] / q[0], vv = q[2] / q[0];
+        rho.data()[c] = r;
+        u.data()[c] = uu;
+        v.data()[c] = vv;
+        e_row[i] = q[3] / q[0] - 0.5 * (uu * uu + vv * vv);
+        guess_row[i] = T.data()[c];
+      }
+      th.temperatures(e_row, guess_row, T.data() + c0, nx);
+      int first_fault = -1;
+      CellFault kind = CellFault::None;
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t c = c0 + static_cast<std::size_t>(i);
+        const double pp = rho.data()[c] * R * T.data()[c];
+        p.data()[c] = pp;
+        const CellFault f = classify(c, pp);
         if (f != CellFault::None && first_fault < 0) {
           first_fault = i;
           kind = f;
@@ -509,7 +538,6 @@ struct GasSolver::Impl {
   double stable_dt(const Th& th) const {
     double max_rate = 0.0;
     double min_viscous_dt = std::numeric_limits<double>::infinity();
-    const TransportConfig& tc = config.transport;
 #pragma omp parallel for if (threaded) schedule(static) reduction(max : max_rate) reduction(min : min_viscous_dt)
     for (int j = 0; j < ny; ++j) {
       const double idy = geo(inv_dy, j);
@@ -521,7 +549,7 @@ struct GasSolver::Impl {
         max_rate = std::max(max_rate, (std::abs(u.data()[c]) + cs) * idx + (std::abs(v.data()[c]) + cs) * idy);
         if (viscous) {
           const double cp = th.cp(t);
-          const TransportProperties tp = transport_properties(tc, t, cp);
+          const TransportProperties tp = transport_at(th, t);
           const double diffusivity_factor = std::max(1.0, th.gamma(t) * tp.lambda / (tp.mu * cp));
           const double h2 = std::min(1.0 / (idx * idx), 1.0 / (idy * idy));
           min_viscous_dt = std::min(min_viscous_dt, 0.25 * h2 * rho.data()[c] / (tp.mu * diffusivity_factor));

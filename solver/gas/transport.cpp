@@ -85,6 +85,15 @@ TransportProperties air_transport_gordon_wilke(double T) {
   return {x1 * mu1 / d1 + x2 * mu2 / d2, x1 * k1 / d1 + x2 * k2 / d2};
 }
 
+GordonWilkeAirTable::GordonWilkeAirTable()
+    : count_(static_cast<std::size_t>((kTmax - kTmin) * kInvStep) + 1), mu_(count_), lambda_(count_) {
+  for (std::size_t k = 0; k < count_; ++k) {
+    const TransportProperties p = air_transport_gordon_wilke(kTmin + static_cast<double>(k) / kInvStep);
+    mu_[k] = p.mu;
+    lambda_[k] = p.lambda;
+  }
+}
+
 double sutherland_viscosity(double T, const TransportConfig& c) {
   const double r = T / c.sutherland_t_ref;
   return c.sutherland_mu_ref * r * std::sqrt(r) * (c.sutherland_t_ref + c.sutherland_s) /
