@@ -23,12 +23,15 @@ struct MusclSettings {
 
 /// kappa of each order: first order none; Muscl2 the fully upwind kappa = -1 scheme;
 /// Muscl3 kappa = 1/3 (third-order upwind-biased, the paper's "third-order SLAU2").
+/// minmod_b is clamped to the TVD bound (3 - kappa)/(1 - kappa) of the chosen kappa.
 inline MusclSettings muscl_settings(const SchemeConfig& s) {
   MusclSettings m;
   m.order = s.reconstruction;
   m.limiter = s.limiter;
   m.kappa = s.reconstruction == Reconstruction::Muscl2 ? -1.0 : 1.0 / 3.0;
-  m.b = s.minmod_b;
+  // The scene allows b up to 4 (the kappa = 1/3 bound); beyond (3-k)/(1-k) the face values
+  // could leave the range of the neighbouring cells, so clamp (kappa = -1: b <= 2).
+  m.b = std::min(s.minmod_b, (3.0 - m.kappa) / (1.0 - m.kappa));
   return m;
 }
 

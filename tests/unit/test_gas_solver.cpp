@@ -153,6 +153,26 @@ TEST(GasSolverBoundaries, InflowKeepsThePostShockStateFromTheInitialCondition) {
   }
 }
 
+TEST(GasSolverInitial, ShockAlongYPutsThePostShockStateBelow) {
+  const Grid2D grid = stretched_grid();
+  GasConfig cfg = air_config();
+  GasSolver gas(grid, cfg);
+  InitialCondition ic;
+  ic.kind = InitialCondition::Kind::Shock;
+  ic.axis = 'y';
+  ic.state = {1.17, 0.0, 0.0, 1.01e5};
+  ic.mach = 2.0;
+  ic.position = 0.005;  // cell centres at 1, 3, 5, ... mm: j <= 1 post-shock, j >= 2 (centre not < 5 mm) pre-shock
+  gas.initialize(ic);
+  const ShockJump jump = normal_shock(ic.state, ic.mach, cfg.thermo, 'y');
+  const GasPrimitives s = gas.primitives();
+  EXPECT_NEAR((*s.v)(4, 1), jump.post.v, 1e-9 * jump.post.v);
+  EXPECT_NEAR((*s.p)(4, 1), jump.post.p, 1e-9 * jump.post.p);
+  EXPECT_EQ((*s.u)(4, 1), 0.0);
+  EXPECT_NEAR((*s.p)(4, 2), 1.01e5, 1e-6);
+  EXPECT_EQ((*s.v)(4, 2), 0.0);
+}
+
 TEST(GasSolverBoundaries, GivenInflowStateIsImposed) {
   const Grid2D grid = stretched_grid();
   GasConfig cfg = air_config();
