@@ -143,6 +143,7 @@ class ParcelSystem {
   // Derived per parcel, permuted along with the state.
   std::vector<double> inv_mass_real_, inv_inertia_real_;
   std::vector<double> x_build_, y_build_;   ///< positions at the last rebuild
+  std::vector<double> ext_fx_, ext_fy_;     ///< drag + Magnus + pressure, per step
 
   // Cell grid of the last rebuild.
   int cells_x_ = 1, cells_y_ = 1;
