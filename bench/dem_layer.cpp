@@ -79,6 +79,7 @@ void BM_DemReferenceLayer(benchmark::State& state) {
     state.counters["parcels"] = static_cast<double>(s.size());
     state.counters["rebuilds"] = static_cast<double>(s.neighbour_rebuilds());
     state.counters["contacts_end"] = static_cast<double>(s.contact_pair_count());
+    state.counters["list_slots_per_parcel"] = static_cast<double>(s.nbr_index.size()) / static_cast<double>(s.size());
   }
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(static_cast<double>(particle_steps), benchmark::Counter::kIsRate);

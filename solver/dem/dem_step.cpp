@@ -49,6 +49,7 @@ void ParcelSystem::compute_contacts(double dt) {
   double* __restrict fx_out = contact_fx.data();
   double* __restrict fy_out = contact_fy.data();
   double* __restrict tq_out = contact_torque.data();
+  const std::uint8_t* __restrict wmask = wall_mask_.data();
 
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
@@ -87,8 +88,10 @@ void ParcelSystem::compute_contacts(double dt) {
       fy += c.fy;
       tq += c.torque;
     }
-    for (int w = 0; w < n_walls; ++w) {
+    const unsigned mask = wmask[i];
+    for (int w = 0; w < n_walls && mask != 0; ++w) {
       const ActiveWall& wall = walls[w];
+      if ((mask & (1u << wall.slot)) == 0) continue;
       double& delta = wdelta[i * kWallCount + wall.slot];
       // Only one of (nx, ny) is non-zero; the distance along it is what matters.
       const double gap = wall.nx != 0.0 ? wall.nx * (wall.pos - xi) : wall.ny * (wall.pos - yi);
