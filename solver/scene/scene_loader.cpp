@@ -62,6 +62,8 @@ Scene parse_scene(const std::string& text, const std::string& name,
 
   Scene scene;
   scene.source_file = name;
+  scene.source_text = text;
+  scene.overrides = overrides;
   toml::table resolved;
   TableReader root(&doc, "", name, &resolved);
   using namespace scene_detail;
