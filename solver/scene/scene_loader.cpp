@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -88,6 +89,9 @@ Scene parse_scene(const std::string& text, const std::string& name,
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  // A folder opens as a stream on Linux and reads as empty: name it instead.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a folder, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open scene file");
   std::ostringstream buf;

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets into build/fuzz (clang, ASan + UBSan) and runs each for
+# SECONDS (default 600) on its corpus fuzz/corpus/<target> (new inputs are added there).
+# Usage: fuzz/run.sh [SECONDS] [TARGET...]   targets: scene_parser checkpoint_reader
+# Crashes are written to build/fuzz/artifacts/<target>/ and make the script exit non-zero.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+seconds="${1:-600}"
+shift || true
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(scene_parser checkpoint_reader)
+build="$root/build/fuzz"
+cxx="${CXX_FUZZ:-clang++-14}"
+cc="${CC_FUZZ:-clang-14}"
+
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" -DDUSTLIFT_FUZZ=ON \
+  -DDUSTLIFT_WITH_VTK=OFF -DDUSTLIFT_BUILD_TESTS=OFF -DDUSTLIFT_BUILD_BENCH=OFF -DDUSTLIFT_NATIVE=OFF >/dev/null
+cmake --build "$build" -j2 --target $(printf 'fuzz_%s ' "${targets[@]}")
+
+status=0
+for t in "${targets[@]}"; do
+  corpus="$root/fuzz/corpus/$t"
+  artifacts="$build/artifacts/$t"
+  mkdir -p "$corpus" "$artifacts"
+  echo "== fuzz_$t for ${seconds}s, corpus $(ls "$corpus" | wc -l) files"
+  # -rss_limit_mb: HDF5 payloads may ask for large allocations; 2 GB is a real failure.
+  "$build/fuzz_$t" "$corpus" -max_total_time="$seconds" -artifact_prefix="$artifacts/" \
+    -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 2>&1 | tee "$build/fuzz_$t.log" | grep -E "^#[0-9]+ +(DONE|INITED)|stat::|ERROR|SUMMARY" || true
+  [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
+  echo "   corpus now $(ls "$corpus" | wc -l) files; log $build/fuzz_$t.log"
+done
+exit $status
