@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets into build/fuzz (clang, ASan + UBSan) and runs each for
-# SECONDS (default 600) on its corpus fuzz/corpus/<target> (new inputs are added there).
+# SECONDS (default 600). Corpus: the committed seeds fuzz/corpus/<target> (read only) plus
+# the working corpus build/fuzz/corpus/<target>, where libFuzzer adds the inputs it finds.
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]   targets: scene_parser checkpoint_reader
 # Crashes are written to build/fuzz/artifacts/<target>/ and make the script exit non-zero.
 set -euo pipefail
@@ -20,14 +21,17 @@ cmake --build "$build" -j2 --target $(printf 'fuzz_%s ' "${targets[@]}")
 
 status=0
 for t in "${targets[@]}"; do
-  corpus="$root/fuzz/corpus/$t"
+  seeds="$root/fuzz/corpus/$t"
+  corpus="$build/corpus/$t"
   artifacts="$build/artifacts/$t"
   mkdir -p "$corpus" "$artifacts"
-  echo "== fuzz_$t for ${seconds}s, corpus $(ls "$corpus" | wc -l) files"
+  echo "== fuzz_$t for ${seconds}s, $(ls "$seeds" | wc -l) seeds, working corpus $(ls "$corpus" | wc -l) files"
   # -rss_limit_mb: HDF5 payloads may ask for large allocations; 2 GB is a real failure.
-  "$build/fuzz_$t" "$corpus" -max_total_time="$seconds" -artifact_prefix="$artifacts/" \
-    -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 2>&1 | tee "$build/fuzz_$t.log" | grep -E "^#[0-9]+ +(DONE|INITED)|stat::|ERROR|SUMMARY" || true
-  [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
+  rc=0
+  LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:print_suppressions=0" "$build/fuzz/fuzz_$t" "$corpus" "$seeds" -max_total_time="$seconds" -artifact_prefix="$artifacts/" \
+    -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 >"$build/fuzz_$t.log" 2>&1 || rc=$?
+  grep -E "^#[0-9]+ +(DONE|INITED)|stat::number_of_executed_units|stat::peak_rss|ERROR|SUMMARY" "$build/fuzz_$t.log" || true
+  [ "$rc" -eq 0 ] || { echo "   fuzz_$t FAILED (exit $rc), see artifacts in $artifacts"; status=1; }
   echo "   corpus now $(ls "$corpus" | wc -l) files; log $build/fuzz_$t.log"
 done
 exit $status

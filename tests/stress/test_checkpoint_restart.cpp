@@ -299,3 +299,33 @@ TEST(CheckpointRestart, DamagedOrForeignFilesExitWithCode2) {
   EXPECT_NE(r.output.find("without the dustlift checkpoint layout"), std::string::npos) << r.output;
   fs::remove_all(dir);
 }
+
+TEST(CheckpointRestart, NumericalFailureLeavesLastGoodCheckpoint) {
+  // run() checkpoints every step; after the 5th checkpoint the test poisons one gas cell
+  // (negative density), so the next step throws NumericalFailure. No checkpoint may follow
+  // the failure, and the file on disk must be the 5th, still readable and restartable.
+  const auto dir = fresh_dir("failure_checkpoint");
+  const std::string path = (dir / "checkpoint.h5").string();
+  Scene scene = parse_scene(kShock, "shock.toml", {"output.checkpoint_interval=1e-12"});
+  Simulation sim(scene);
+  int written = 0;
+  long long poisoned_at = -1;
+  sim.set_checkpoint_writer([&](const Simulation& s) {
+    write_checkpoint(path, s.snapshot());
+    if (++written == 5) {
+      poisoned_at = s.step();
+      sim.gas().conserved(0)(40, 5) = -1.0;
+    }
+  });
+  EXPECT_THROW(sim.run(dir.string()), NumericalFailure);
+  EXPECT_EQ(written, 5);
+  const Snapshot last = read_checkpoint(path);
+  EXPECT_EQ(last.i64.at("run/step")[0], poisoned_at);
+  Simulation restarted(scene);
+  restarted.restore(last);
+  EXPECT_EQ(restarted.step(), poisoned_at);
+  EXPECT_GT(restarted.gas().conserved(0)(40, 5), 0.0) << "the poison came after the checkpoint";
+  restarted.advance(1.0);  // and it continues
+  EXPECT_EQ(restarted.step(), poisoned_at + 1);
+  fs::remove_all(dir);
+}
