@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
       if (restart_path.empty()) {
         out_dir = (fs::path("out") / scene.run.name).string();
       } else {
-        // Next to the original folder, named by the step it continues from.
+        // Inside the checkpoint's folder, named by the step it continues from.
         const auto s = restart.i64.find("run/step");
         const long long step = s != restart.i64.end() && s->second.size() == 1 ? s->second[0] : 0;
         out_dir = (fs::absolute(restart_path).parent_path() / fmt::format("restart_{}", step)).string();
@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
     }
     if (!restart_path.empty()) {
       std::error_code ec;
-      if (fs::weakly_canonical(fs::absolute(out_dir), ec) == fs::weakly_canonical(fs::absolute(restart_path).parent_path(), ec)) {
+      if (fs::equivalent(out_dir, fs::absolute(restart_path).parent_path(), ec)) {
         throw SceneError("output folder '" + out_dir + "': a restart writes a new segment; it must not be the " +
                          "folder of its checkpoint (its outputs would be overwritten)");
       }
