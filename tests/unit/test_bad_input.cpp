@@ -94,6 +94,8 @@ INSTANTIATE_TEST_SUITE_P(
         Row{"wrong_type_table", "", "{scene} --set particles.layer=5", "particles.layer"},
         Row{"zero_cells", "", "{scene} --set grid.y.cells=0", "grid.y.cells"},
         Row{"negative_cells", "", "{scene} --set grid.x.cells=-8", "grid.x.cells"},
+        Row{"too_many_cells", "", "{scene} --set grid.x.cells=2000000", "grid.x.cells"},
+        Row{"cell_size_typo", "", "{scene} --set grid.x={start=0.0,end=0.004,cell_size=2.5e-14}", "grid.x.cell_size"},
         Row{"inverted_axis", "", "{scene} --set grid.x.end=-0.004", "grid.x.end"},
         Row{"negative_diameter", "", "{scene} --set particles.diameter=-1e-4", "particles.diameter"},
         Row{"zero_parcel_diameter", "", "{scene} --set particles.parcel_diameter=0", "particles.parcel_diameter"},
