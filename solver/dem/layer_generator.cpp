@@ -125,7 +125,7 @@ double settle_under_gravity(ParcelSystem& system, double g, double ke_per_parcel
   const double chunk = 200.0 * system.stable_time_step();
   const double n = static_cast<double>(std::max<std::size_t>(1, system.size()));
   double t = 0.0;
-  // Wait at least the free-fall time over the layer's depth before testing for rest.
+  // Quiet means slow AND resting on something (a bed that has not started falling is slow too).
   while (t < max_time) {
     system.advance(chunk);
     t += chunk;

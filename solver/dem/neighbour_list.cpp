@@ -37,6 +37,9 @@ void ParcelSystem::sort_by_cell() {
   if (d.periodic_x && cells_x_ < 3) {
     throw std::invalid_argument("ParcelSystem: periodic x needs a domain at least 3 cutoffs long");
   }
+  // Number the cells along the short axis first: a parcel's neighbours then lie within a
+  // few dozen places of it in memory (the paper's layer is 3,600 cells long, 18 high).
+  x_major_ = cells_x_ >= cells_y_;
   cell_dx_ = length_x_ / cells_x_;
   cell_dy_ = (d.y_max - d.y_min) / cells_y_;
 
@@ -55,7 +58,7 @@ void ParcelSystem::sort_by_cell() {
     // Clamping keeps parcels outside the domain correct: it is monotone and contracts.
     const int cx = std::clamp(static_cast<int>(std::floor((x[i] - d.x_min) / cell_dx_)), 0, cells_x_ - 1);
     const int cy = std::clamp(static_cast<int>(std::floor((y[i] - d.y_min) / cell_dy_)), 0, cells_y_ - 1);
-    cell_of_[i] = cy * cells_x_ + cx;
+    cell_of_[i] = cell_index(cx, cy);
   }
   const std::size_t n_cells = static_cast<std::size_t>(cells_x_) * cells_y_;
   cell_start_.assign(n_cells + 1, 0);
@@ -95,15 +98,18 @@ void ParcelSystem::rebuild_neighbours() {
   const DemDomain& d = cfg_.domain;
   const bool periodic = d.periodic_x;
   const double skin = skin_;
-  // Visits the candidates of parcel i in a fixed order (rows up, columns left to right,
+  // Visits the candidates of parcel i in a fixed order (the 3x3 cells, major axis outer,
   // parcels in cell order) and calls f(j, image) for each within r_i + r_j + skin.
   auto for_each_candidate = [&](std::size_t i, auto&& f) {
     const int c = cell_of_[i];
-    const int cx = c % cells_x_, cy = c / cells_x_;
-    for (int dy = -1; dy <= 1; ++dy) {
-      const int ry = cy + dy;
-      if (ry < 0 || ry >= cells_y_) continue;
-      for (int dx = -1; dx <= 1; ++dx) {
+    const int cx = x_major_ ? c / cells_y_ : c % cells_x_;
+    const int cy = x_major_ ? c % cells_y_ : c / cells_x_;
+    // Major axis outside, minor inside: the visited cells are (nearly) contiguous in memory.
+    for (int outer = -1; outer <= 1; ++outer) {
+      for (int inner = -1; inner <= 1; ++inner) {
+        const int dx = x_major_ ? outer : inner, dy = x_major_ ? inner : outer;
+        const int ry = cy + dy;
+        if (ry < 0 || ry >= cells_y_) continue;
         int rx = cx + dx;
         int image = 0;
         if (rx < 0 || rx >= cells_x_) {
@@ -111,7 +117,7 @@ void ParcelSystem::rebuild_neighbours() {
           image = rx < 0 ? -1 : 1;
           rx -= image * cells_x_;
         }
-        const int cell = ry * cells_x_ + rx;
+        const int cell = cell_index(rx, ry);
         for (std::int32_t j = cell_start_[cell]; j < cell_start_[cell + 1]; ++j) {
           if (static_cast<std::size_t>(j) == i) continue;
           const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
@@ -156,6 +162,23 @@ void ParcelSystem::rebuild_neighbours() {
         }
       }
     }
+  }
+  // Walls each parcel may touch before the next rebuild (it moves less than skin/2 until
+  // then, and less than a skin per step, so a wall contact also gets its end seen).
+  wall_mask_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double reach = radius[i] + skin;
+    std::uint8_t mask = 0;
+    if (d.wall_bottom && y[i] - d.y_min < reach) mask |= 1u << static_cast<int>(Wall::Bottom);
+    if (d.wall_top && d.y_max - y[i] < reach) mask |= 1u << static_cast<int>(Wall::Top);
+    if (d.wall_left && x[i] - d.x_min < reach) mask |= 1u << static_cast<int>(Wall::Left);
+    if (d.wall_right && d.x_max - x[i] < reach) mask |= 1u << static_cast<int>(Wall::Right);
+    // A wall history left from before (e.g. restored from a checkpoint) is seen as well.
+    for (int w = 0; w < kWallCount; ++w) {
+      if (wall_delta[i * kWallCount + w] != 0.0) mask |= 1u << w;
+    }
+    wall_mask_[i] = mask;
   }
   x_build_ = x;  // same size: no allocation
   y_build_ = y;

@@ -163,9 +163,13 @@ class ParcelSystem {
   // Derived per parcel, permuted along with the state.
   std::vector<double> inv_mass_real_, inv_inertia_real_;
   std::vector<double> x_build_, y_build_;   ///< positions at the last rebuild
+  std::vector<double> ext_fx_, ext_fy_;     ///< drag + Magnus + pressure, per step
+  std::vector<std::uint8_t> wall_mask_;     ///< bit w: wall w within reach until the next rebuild
 
   // Cell grid of the last rebuild.
   int cells_x_ = 1, cells_y_ = 1;
+  bool x_major_ = true;  ///< cells numbered along y first (x is the long axis)
+  int cell_index(int cx, int cy) const { return x_major_ ? cx * cells_y_ + cy : cy * cells_x_ + cx; }
   double cell_dx_ = 1.0, cell_dy_ = 1.0;
   std::vector<std::int32_t> cell_of_, cell_start_, order_;
 

@@ -2,6 +2,8 @@
 // viscous terms, SSP-RK3 (Shu-Osher), ghost-cell boundaries. See docs/gas-solver.md.
 #include "solver/gas/gas_solver.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "solver/core/errors.hpp"
+#include "solver/gas/flux_rows.hpp"
 #include "solver/gas/muscl.hpp"
 #include "solver/gas/shock_relations.hpp"
 #include "solver/gas/slau2.hpp"
@@ -63,6 +66,7 @@ struct GasSolver::Impl {
   GasConfig config;
   Thermo thermo;
   MusclSettings muscl;
+  GordonWilkeAirTable air_table;
   bool viscous;
   int nx, ny, ng, stride;
   /// Small grids run on one thread: the fork/join barriers would cost more than the work.
@@ -78,6 +82,9 @@ struct GasSolver::Impl {
   /// Inflow states along each boundary (one per boundary cell).
   std::vector<PrimitiveState> inflow_left, inflow_right, inflow_bottom, inflow_top;
   /// Per row: first faulty interior cell index (or -1) and its fault.
+  /// Per-thread scratch rows of the flux kernels (8 arrays of scratch_len each).
+  std::vector<double> scratch;
+  std::size_t scratch_len = 0;
   std::vector<int> fault_i;
   std::vector<CellFault> fault_kind;
 
@@ -107,6 +114,7 @@ struct GasSolver::Impl {
     build_geometry(grid.y(), inv_dy, inv_dyc, inv_dy2);
     fault_i.assign(static_cast<std::size_t>(ny), -1);
     fault_kind.assign(static_cast<std::size_t>(ny), CellFault::None);
+    ensure_scratch();
   }
 
   void build_geometry(const Axis& a, std::vector<double>& inv_w, std::vector<double>& inv_c,
@@ -143,11 +151,16 @@ struct GasSolver::Impl {
     v.data()[c] = vv;
     T.data()[c] = t;
     p.data()[c] = pp;
+    return classify(c, pp);
+  }
+
+  /// The checks of one cell after its primitives were set.
+  CellFault classify(std::size_t c, double pp) const {
     if (!(std::isfinite(U[0].data()[c]) && std::isfinite(U[1].data()[c]) && std::isfinite(U[2].data()[c]) &&
           std::isfinite(U[3].data()[c]))) {
       return CellFault::NotFinite;
     }
-    if (!(r > 0.0)) return CellFault::Density;
+    if (!(rho.data()[c] > 0.0)) return CellFault::Density;
     if (!(pp > 0.0) || !std::isfinite(pp)) return CellFault::Pressure;
     return CellFault::None;
   }
@@ -238,53 +251,102 @@ struct GasSolver::Impl {
   }
 
   // ---------------------------------------------------------------- fluxes
-  template <class Th>
-  FaceState face_state(const Th& th, double r, double uu, double vv, double pp) const {
-    const double t = pp / (r * R);
-    double h, cp;
-    th.enthalpy_and_cp(t, h, cp);
-    const double gamma = cp / (cp - R);
-    return {r, uu, vv, pp, h + 0.5 * (uu * uu + vv * vv), std::sqrt(gamma * R * t)};
+  /// Scratch rows for the flux kernels: 8 arrays per thread.
+  FaceRowScratch thread_scratch() {
+    const std::size_t len = scratch_len;
+    double* base = scratch.data() + static_cast<std::size_t>(omp_get_thread_num()) * 8 * len;
+    return {base, base + len, base + 2 * len, base + 3 * len, base + 4 * len, base + 5 * len, base + 6 * len,
+            base + 7 * len};
   }
 
-  /// Inviscid SLAU2 flux through the face between cells c - step and c (normal (nx, ny)).
+  /// Sized once for the current thread count (so normally no allocation in step()).
+  void ensure_scratch() {
+    scratch_len = static_cast<std::size_t>(std::max(nx, ny) + 1);
+    const auto threads = static_cast<std::size_t>(threaded ? omp_get_max_threads() : 1);
+    if (scratch.size() < threads * 8 * scratch_len) scratch.resize(threads * 8 * scratch_len);
+  }
+
+  /// The four stencil rows of a row of faces whose first face has cell c_m1 before it.
+  static StencilRows stencil(const Field2D& q, std::size_t c_m1, std::size_t step) {
+    const double* b = q.data() + c_m1;
+    return {b - step, b, b + step, b + 2 * step};
+  }
+
+  FaceRowInput face_row_input(std::size_t c_m1, std::size_t step, int faces) const {
+    return {stencil(rho, c_m1, step), stencil(u, c_m1, step), stencil(v, c_m1, step), stencil(p, c_m1, step),
+            alpha.data() + c_m1, alpha.data() + c_m1 + step, faces};
+  }
+
+  /// Transport properties at temperature t (the Gordon-Wilke model through its table).
   template <class Th>
-  ConservedFlux inviscid_face_flux(const Th& th, std::size_t c, std::ptrdiff_t step, double n_x,
-                                   double n_y) const {
-    const double* fr = rho.data();
-    const double* fu = u.data();
-    const double* fv = v.data();
-    const double* fp = p.data();
-    const std::size_t m2 = c - 2 * step, m1 = c - step, p1 = c + step;
-    FacePair r = muscl_face(fr[m2], fr[m1], fr[c], fr[p1], muscl);
-    FacePair pr = muscl_face(fp[m2], fp[m1], fp[c], fp[p1], muscl);
-    FacePair uu, vv;
-    if (r.left <= 0.0 || r.right <= 0.0 || pr.left <= 0.0 || pr.right <= 0.0) {
-      // Positivity safeguard: first order at this face.
-      r = {fr[m1], fr[c]};
-      pr = {fp[m1], fp[c]};
-      uu = {fu[m1], fu[c]};
-      vv = {fv[m1], fv[c]};
-    } else {
-      uu = muscl_face(fu[m2], fu[m1], fu[c], fu[p1], muscl);
-      vv = muscl_face(fv[m2], fv[m1], fv[c], fv[p1], muscl);
-    }
-    return slau2_flux(face_state(th, r.left, uu.left, vv.left, pr.left),
-                      face_state(th, r.right, uu.right, vv.right, pr.right), n_x, n_y);
+  TransportProperties transport_at(const Th& th, double t) const {
+    if (config.transport.model == TransportModel::GordonWilke) return air_table(t);
+    return transport_properties(config.transport, t, th.cp(t));
   }
 
   template <class Th>
   void compute_transport(const Th& th) {
-    const TransportConfig& tc = config.transport;
 #pragma omp for schedule(static)
     for (int j = -1; j <= ny; ++j) {
       for (int i = -1; i <= nx; ++i) {
         const std::size_t c = at(i, j);
-        const double t = T.data()[c];
-        const TransportProperties tp = transport_properties(tc, t, th.cp(t));
+        const TransportProperties tp = transport_at(th, T.data()[c]);
         mu.data()[c] = tp.mu;
         lambda.data()[c] = tp.lambda;
       }
+    }
+  }
+
+  /// Subtracts the porosity-weighted viscous and heat fluxes of x-face row j.
+  void viscous_x_row(int j) {
+    const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx + 1);
+    const std::size_t cu = static_cast<std::size_t>(stride);
+    const double it = geo(inv_dy2, j);
+    for (int f = 0; f <= nx; ++f) {
+      const std::size_t c = at(f, j), l = c - 1;  // face f: between cells f-1 and f
+      const double idn = geo(inv_dxc, f - 1);
+      const double ux = (u.data()[c] - u.data()[l]) * idn;
+      const double vx = (v.data()[c] - v.data()[l]) * idn;
+      const double tx = (T.data()[c] - T.data()[l]) * idn;
+      const double uy = 0.5 * it * (u.data()[c + cu] - u.data()[c - cu] + u.data()[l + cu] - u.data()[l - cu]);
+      const double vy = 0.5 * it * (v.data()[c + cu] - v.data()[c - cu] + v.data()[l + cu] - v.data()[l - cu]);
+      const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
+      const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
+      const double uf = 0.5 * (u.data()[c] + u.data()[l]);
+      const double vf = 0.5 * (v.data()[c] + v.data()[l]);
+      const double txx = mf * (4.0 / 3.0 * ux - 2.0 / 3.0 * vy);
+      const double txy = mf * (uy + vx);
+      const double af = 0.5 * (alpha.data()[c] + alpha.data()[l]);
+      const std::size_t k = row + static_cast<std::size_t>(f);
+      fx[1][k] -= af * txx;
+      fx[2][k] -= af * txy;
+      fx[3][k] -= af * (uf * txx + vf * txy + kf * tx);
+    }
+  }
+
+  /// Same for y-face row jf.
+  void viscous_y_row(int jf) {
+    const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx);
+    const double idn = geo(inv_dyc, jf - 1);
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = at(i, jf), l = c - static_cast<std::size_t>(stride);  // cells (i, jf-1), (i, jf)
+      const double uy = (u.data()[c] - u.data()[l]) * idn;
+      const double vy = (v.data()[c] - v.data()[l]) * idn;
+      const double ty = (T.data()[c] - T.data()[l]) * idn;
+      const double it = geo(inv_dx2, i);
+      const double ux = 0.5 * it * (u.data()[c + 1] - u.data()[c - 1] + u.data()[l + 1] - u.data()[l - 1]);
+      const double vx = 0.5 * it * (v.data()[c + 1] - v.data()[c - 1] + v.data()[l + 1] - v.data()[l - 1]);
+      const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
+      const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
+      const double uf = 0.5 * (u.data()[c] + u.data()[l]);
+      const double vf = 0.5 * (v.data()[c] + v.data()[l]);
+      const double tyy = mf * (4.0 / 3.0 * vy - 2.0 / 3.0 * ux);
+      const double txy = mf * (uy + vx);
+      const double af = 0.5 * (alpha.data()[c] + alpha.data()[l]);
+      const std::size_t k = row + static_cast<std::size_t>(i);
+      fy[1][k] -= af * txy;
+      fy[2][k] -= af * tyy;
+      fy[3][k] -= af * (uf * txy + vf * tyy + kf * ty);
     }
   }
 
@@ -294,74 +356,21 @@ struct GasSolver::Impl {
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
       const std::size_t row = static_cast<std::size_t>(j) * nf;
-      for (int f = 0; f <= nx; ++f) {
-        const std::size_t c = at(f, j);  // face f: between cells f-1 and f
-        ConservedFlux F = inviscid_face_flux(th, c, 1, 1.0, 0.0);
-        if (viscous) {
-          const std::size_t l = c - 1;
-          const std::size_t cu = static_cast<std::size_t>(stride);
-          const double idn = geo(inv_dxc, f - 1);
-          const double ux = (u.data()[c] - u.data()[l]) * idn;
-          const double vx = (v.data()[c] - v.data()[l]) * idn;
-          const double tx = (T.data()[c] - T.data()[l]) * idn;
-          const double it = geo(inv_dy2, j);
-          const double uy = 0.5 * it * (u.data()[c + cu] - u.data()[c - cu] + u.data()[l + cu] - u.data()[l - cu]);
-          const double vy = 0.5 * it * (v.data()[c + cu] - v.data()[c - cu] + v.data()[l + cu] - v.data()[l - cu]);
-          const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
-          const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
-          const double uf = 0.5 * (u.data()[c] + u.data()[l]);
-          const double vf = 0.5 * (v.data()[c] + v.data()[l]);
-          const double txx = mf * (4.0 / 3.0 * ux - 2.0 / 3.0 * vy);
-          const double txy = mf * (uy + vx);
-          F.momentum_x -= txx;
-          F.momentum_y -= txy;
-          F.energy -= uf * txx + vf * txy + kf * tx;
-        }
-        const double af = 0.5 * (alpha.data()[c] + alpha.data()[c - 1]);
-        const std::size_t k = row + static_cast<std::size_t>(f);
-        fx[0][k] = af * F.mass;
-        fx[1][k] = af * F.momentum_x;
-        fx[2][k] = af * F.momentum_y;
-        fx[3][k] = af * F.energy;
-      }
+      inviscid_flux_row(th, muscl, face_row_input(at(-1, j), 1, nx + 1), thread_scratch(),
+                        {fx[0].data() + row, fx[1].data() + row, fx[2].data() + row, fx[3].data() + row}, 1.0, 0.0);
+      if (viscous) viscous_x_row(j);
     }
   }
 
   template <class Th>
   void compute_y_fluxes(const Th& th) {
-    const auto step = static_cast<std::ptrdiff_t>(stride);
+    const auto step = static_cast<std::size_t>(stride);
 #pragma omp for schedule(static)
     for (int jf = 0; jf <= ny; ++jf) {
       const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx);
-      for (int i = 0; i < nx; ++i) {
-        const std::size_t c = at(i, jf);  // face jf: between cells (i, jf-1) and (i, jf)
-        ConservedFlux F = inviscid_face_flux(th, c, step, 0.0, 1.0);
-        if (viscous) {
-          const std::size_t l = c - static_cast<std::size_t>(stride);
-          const double idn = geo(inv_dyc, jf - 1);
-          const double uy = (u.data()[c] - u.data()[l]) * idn;
-          const double vy = (v.data()[c] - v.data()[l]) * idn;
-          const double ty = (T.data()[c] - T.data()[l]) * idn;
-          const double it = geo(inv_dx2, i);
-          const double ux = 0.5 * it * (u.data()[c + 1] - u.data()[c - 1] + u.data()[l + 1] - u.data()[l - 1]);
-          const double vx = 0.5 * it * (v.data()[c + 1] - v.data()[c - 1] + v.data()[l + 1] - v.data()[l - 1]);
-          const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
-          const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
-          const double uf = 0.5 * (u.data()[c] + u.data()[l]);
-          const double vf = 0.5 * (v.data()[c] + v.data()[l]);
-          const double tyy = mf * (4.0 / 3.0 * vy - 2.0 / 3.0 * ux);
-          const double txy = mf * (uy + vx);
-          F.momentum_x -= txy;
-          F.momentum_y -= tyy;
-          F.energy -= uf * txy + vf * tyy + kf * ty;
-        }
-        const double af = 0.5 * (alpha.data()[c] + alpha.data()[c - static_cast<std::size_t>(stride)]);
-        const std::size_t k = row + static_cast<std::size_t>(i);
-        fy[0][k] = af * F.mass;
-        fy[1][k] = af * F.momentum_x;
-        fy[2][k] = af * F.momentum_y;
-        fy[3][k] = af * F.energy;
-      }
+      inviscid_flux_row(th, muscl, face_row_input(at(0, jf - 1), step, nx), thread_scratch(),
+                        {fy[0].data() + row, fy[1].data() + row, fy[2].data() + row, fy[3].data() + row}, 0.0, 1.0);
+      if (viscous) viscous_y_row(jf);
     }
   }
 
@@ -372,20 +381,23 @@ struct GasSolver::Impl {
   void update(const Th& th, double dt, double c_old, double c_new) {
     const std::size_t nfx = static_cast<std::size_t>(nx + 1);
     const std::size_t nfy = static_cast<std::size_t>(nx);
+    const auto sx = static_cast<std::size_t>(stride);
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
       const double idy = geo(inv_dy, j);
-      int first_fault = -1;
-      CellFault kind = CellFault::None;
+      // The flux phase is over (barrier), so this thread's scratch rows are free again.
+      const FaceRowScratch s = thread_scratch();
+      double* e_row = s.rho_l;
+      double* guess_row = s.u_l;
+      const std::size_t c0 = at(0, j);
       for (int i = 0; i < nx; ++i) {
-        const std::size_t c = at(i, j);
+        const std::size_t c = c0 + static_cast<std::size_t>(i);
         const double idx = geo(inv_dx, i);
         const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i);
         const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i);
         const double* a = alpha.data();
         const double ax_plus = 0.5 * (a[c] + a[c + 1]), ax_minus = 0.5 * (a[c - 1] + a[c]);
-        const double ay_plus = 0.5 * (a[c] + a[c + static_cast<std::size_t>(stride)]);
-        const double ay_minus = 0.5 * (a[c - static_cast<std::size_t>(stride)] + a[c]);
+        const double ay_plus = 0.5 * (a[c] + a[c + sx]), ay_minus = 0.5 * (a[c - sx] + a[c]);
         const double pc = p.data()[c];
         double rhs[4];
         for (int k = 0; k < 4; ++k) {
@@ -394,11 +406,26 @@ struct GasSolver::Impl {
         }
         rhs[1] += pc * (ax_plus - ax_minus) * idx;
         rhs[2] += pc * (ay_plus - ay_minus) * idy;
+        double q[4];
         for (int k = 0; k < 4; ++k) {
-          double& q = U[k].data()[c];
-          q = c_old * U0[k].data()[c] + c_new * (q + dt * rhs[k]);
+          q[k] = c_old * U0[k].data()[c] + c_new * (U[k].data()[c] + dt * rhs[k]);
+          U[k].data()[c] = q[k];
         }
-        const CellFault f = primitive_from_conserved(th, c);
+        const double r = q[0] / a[c], uu = q[1] / q[0], vv = q[2] / q[0];
+        rho.data()[c] = r;
+        u.data()[c] = uu;
+        v.data()[c] = vv;
+        e_row[i] = q[3] / q[0] - 0.5 * (uu * uu + vv * vv);
+        guess_row[i] = T.data()[c];
+      }
+      th.temperatures(e_row, guess_row, T.data() + c0, nx);
+      int first_fault = -1;
+      CellFault kind = CellFault::None;
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t c = c0 + static_cast<std::size_t>(i);
+        const double pp = rho.data()[c] * R * T.data()[c];
+        p.data()[c] = pp;
+        const CellFault f = classify(c, pp);
         if (f != CellFault::None && first_fault < 0) {
           first_fault = i;
           kind = f;
@@ -467,8 +494,37 @@ struct GasSolver::Impl {
     }
   }
 
+  /// Checks the current primitives (as left by the last step or refresh_primitives(), e.g.
+  /// after the coupling changed the state) so a bad input is reported where it is, not
+  /// where its NaN spread to during the first stage.
+  void check_current_state() {
+#pragma omp parallel for if (threaded) schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      int first_fault = -1;
+      CellFault kind = CellFault::None;
+      for (int i = 0; i < nx && first_fault < 0; ++i) {
+        const std::size_t c = at(i, j);
+        bool finite = true;
+        for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(U[k].data()[c]);
+        if (!finite) {
+          kind = CellFault::NotFinite;
+        } else if (!(rho.data()[c] > 0.0)) {
+          kind = CellFault::Density;
+        } else if (!(p.data()[c] > 0.0)) {
+          kind = CellFault::Pressure;
+        }
+        if (kind != CellFault::None) first_fault = i;
+      }
+      fault_i[static_cast<std::size_t>(j)] = first_fault;
+      fault_kind[static_cast<std::size_t>(j)] = kind;
+    }
+    throw_on_fault();
+  }
+
   template <class Th>
   void rk3_step(const Th& th, double dt) {
+    check_current_state();
+    ensure_scratch();
     fill_porosity_ghosts();
     for (int k = 0; k < 4; ++k) U0[k].raw() = U[k].raw();  // same size: no allocation
     stage(th, dt, 0.0, 1.0);
@@ -482,7 +538,6 @@ struct GasSolver::Impl {
   double stable_dt(const Th& th) const {
     double max_rate = 0.0;
     double min_viscous_dt = std::numeric_limits<double>::infinity();
-    const TransportConfig& tc = config.transport;
 #pragma omp parallel for if (threaded) schedule(static) reduction(max : max_rate) reduction(min : min_viscous_dt)
     for (int j = 0; j < ny; ++j) {
       const double idy = geo(inv_dy, j);
@@ -494,7 +549,7 @@ struct GasSolver::Impl {
         max_rate = std::max(max_rate, (std::abs(u.data()[c]) + cs) * idx + (std::abs(v.data()[c]) + cs) * idy);
         if (viscous) {
           const double cp = th.cp(t);
-          const TransportProperties tp = transport_properties(tc, t, cp);
+          const TransportProperties tp = transport_at(th, t);
           const double diffusivity_factor = std::max(1.0, th.gamma(t) * tp.lambda / (tp.mu * cp));
           const double h2 = std::min(1.0 / (idx * idx), 1.0 / (idy * idy));
           min_viscous_dt = std::min(min_viscous_dt, 0.25 * h2 * rho.data()[c] / (tp.mu * diffusivity_factor));

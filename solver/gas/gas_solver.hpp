@@ -57,9 +57,12 @@ class GasSolver {
   const Field2D& conserved(int k) const;
   void refresh_primitives();
 
-  /// Porosity alpha_g per cell (1 by default). The coupling writes the interior; ghosts are
-  /// refilled at every step. The conserved variables carry the factor alpha_g, so after
-  /// changing it the caller decides whether to rescale conserved(k) and refresh_primitives().
+  /// Porosity alpha_g per cell (1 by default; read before initialize() builds the state).
+  /// The coupling writes the interior; ghosts are refilled at every step. The conserved
+  /// variables carry the factor alpha_g and eq. (1) has no mass source, so when particles
+  /// move: write the new alpha_g, keep conserved(0..2), apply the -p d(alpha_g)/dt work of
+  /// eq. (3) (to conserved(3) directly or through source(3)), then refresh_primitives()
+  /// (rho = (alpha rho)/alpha follows).
   Field2D& porosity();
 
   /// External volumetric sources added to d(conserved(k))/dt (per m^3, e.g. -f_p, -s_p - q_p

@@ -23,35 +23,58 @@ struct MusclSettings {
 
 /// kappa of each order: first order none; Muscl2 the fully upwind kappa = -1 scheme;
 /// Muscl3 kappa = 1/3 (third-order upwind-biased, the paper's "third-order SLAU2").
+/// minmod_b is clamped to the TVD bound (3 - kappa)/(1 - kappa) of the chosen kappa.
 inline MusclSettings muscl_settings(const SchemeConfig& s) {
   MusclSettings m;
   m.order = s.reconstruction;
   m.limiter = s.limiter;
   m.kappa = s.reconstruction == Reconstruction::Muscl2 ? -1.0 : 1.0 / 3.0;
-  m.b = s.minmod_b;
+  // The scene allows b up to 4 (the kappa = 1/3 bound); beyond (3-k)/(1-k) the face values
+  // could leave the range of the neighbouring cells, so clamp (kappa = -1: b <= 2).
+  m.b = std::min(s.minmod_b, (3.0 - m.kappa) / (1.0 - m.kappa));
   return m;
 }
 
+/// minmod(a, b): the smaller-magnitude argument when both have the same sign, else 0.
+/// Written as selects so that row loops vectorise.
 inline double minmod(double a, double b) {
-  if (a * b <= 0.0) return 0.0;
-  return std::abs(a) < std::abs(b) ? a : b;
+  const double smaller = std::abs(a) < std::abs(b) ? a : b;
+  return a * b <= 0.0 ? 0.0 : smaller;
 }
 
 /// Extrapolated value of cell q (backward difference dm, forward difference dp) at its
-/// face in direction `side` (+1: right face, -1: left face).
-inline double muscl_extrapolate(double q, double dm, double dp, int side, const MusclSettings& m) {
-  const double k = m.kappa;
-  if (m.limiter == Limiter::Minmod) {
-    const double dm_lim = minmod(dm, m.b * dp);
-    const double dp_lim = minmod(dp, m.b * dm);
-    return side > 0 ? q + 0.25 * ((1.0 - k) * dm_lim + (1.0 + k) * dp_lim)
-                    : q - 0.25 * ((1.0 - k) * dp_lim + (1.0 + k) * dm_lim);
+/// face on side Side (+1: right face, -1: left face), limiter fixed at compile time.
+template <Limiter L, int Side>
+inline double muscl_extrapolate(double q, double dm, double dp, double kappa, double b) {
+  const double k = kappa;
+  if constexpr (L == Limiter::Minmod) {
+    const double dm_lim = minmod(dm, b * dp);
+    const double dp_lim = minmod(dp, b * dm);
+    if constexpr (Side > 0) {
+      return q + 0.25 * ((1.0 - k) * dm_lim + (1.0 + k) * dp_lim);
+    } else {
+      return q - 0.25 * ((1.0 - k) * dp_lim + (1.0 + k) * dm_lim);
+    }
+  } else {
+    // van Albada: epsilon relative to the local scale guards 0/0 on flat data only.
+    const double eps = 1e-12 * (q * q) + 1e-300;
+    const double s = std::max(0.0, (2.0 * dp * dm + eps) / (dp * dp + dm * dm + eps));
+    if constexpr (Side > 0) {
+      return q + 0.25 * s * ((1.0 - k * s) * dm + (1.0 + k * s) * dp);
+    } else {
+      return q - 0.25 * s * ((1.0 - k * s) * dp + (1.0 + k * s) * dm);
+    }
   }
-  // van Albada: epsilon relative to the local scale guards 0/0 on flat data only.
-  const double eps = 1e-12 * (q * q) + 1e-300;
-  const double s = std::max(0.0, (2.0 * dp * dm + eps) / (dp * dp + dm * dm + eps));
-  return side > 0 ? q + 0.25 * s * ((1.0 - k * s) * dm + (1.0 + k * s) * dp)
-                  : q - 0.25 * s * ((1.0 - k * s) * dp + (1.0 + k * s) * dm);
+}
+
+/// Run-time dispatching form of the above (side +1 or -1).
+inline double muscl_extrapolate(double q, double dm, double dp, int side, const MusclSettings& m) {
+  if (m.limiter == Limiter::Minmod) {
+    return side > 0 ? muscl_extrapolate<Limiter::Minmod, +1>(q, dm, dp, m.kappa, m.b)
+                    : muscl_extrapolate<Limiter::Minmod, -1>(q, dm, dp, m.kappa, m.b);
+  }
+  return side > 0 ? muscl_extrapolate<Limiter::VanAlbada, +1>(q, dm, dp, m.kappa, m.b)
+                  : muscl_extrapolate<Limiter::VanAlbada, -1>(q, dm, dp, m.kappa, m.b);
 }
 
 /// Left and right values at face i+1/2 from q_{i-1}, q_i, q_{i+1}, q_{i+2}.

@@ -59,8 +59,39 @@ TransportProperties wilke_binary_mixture(const TransportProperties& s1, double x
 }
 
 TransportProperties air_transport_gordon_wilke(double T) {
-  return wilke_binary_mixture(oxygen_transport(T), nasa7::kMoleFractionO2, nasa7::kMolarMassO2,
-                              nitrogen_transport(T), nasa7::kMoleFractionN2, nasa7::kMolarMassN2);
+  // Same values as wilke_binary_mixture(oxygen_transport(T), ..., nitrogen_transport(T), ...),
+  // arranged for the per-cell loop: one log for the four fits, molar-mass factors of Phi_ij
+  // computed once.
+  struct WilkeConstants {
+    double k12, k21, s12, s21;  // (M_j/M_i)^(1/4) and sqrt(8 (1 + M_i/M_j)), 1 = O2, 2 = N2
+  };
+  static const WilkeConstants w = [] {
+    const double m1 = nasa7::kMolarMassO2, m2 = nasa7::kMolarMassN2;
+    return WilkeConstants{std::sqrt(std::sqrt(m2 / m1)), std::sqrt(std::sqrt(m1 / m2)),
+                          std::sqrt(8.0 * (1.0 + m1 / m2)), std::sqrt(8.0 * (1.0 + m2 / m1))};
+  }();
+  const bool low = T < kFitRangeBreak;
+  const double ln_t = std::log(T), inv = 1.0 / T;
+  auto fit = [&](const GordonFit& f) { return std::exp(f.A * ln_t + inv * (f.B + f.C * inv) + f.D); };
+  const double mu1 = kMicropoiseToPaS * fit(low ? kO2ViscosityLow : kO2ViscosityHigh);
+  const double mu2 = kMicropoiseToPaS * fit(low ? kN2ViscosityLow : kN2ViscosityHigh);
+  const double k1 = kMicroWattPerCmKToSI * fit(low ? kO2ConductivityLow : kO2ConductivityHigh);
+  const double k2 = kMicroWattPerCmKToSI * fit(low ? kN2ConductivityLow : kN2ConductivityHigh);
+  const double r = std::sqrt(mu1 / mu2);
+  const double a12 = 1.0 + r * w.k12, a21 = 1.0 + w.k21 / r;
+  const double phi12 = a12 * a12 / w.s12, phi21 = a21 * a21 / w.s21;
+  const double x1 = nasa7::kMoleFractionO2, x2 = nasa7::kMoleFractionN2;
+  const double d1 = x1 + x2 * phi12, d2 = x2 + x1 * phi21;
+  return {x1 * mu1 / d1 + x2 * mu2 / d2, x1 * k1 / d1 + x2 * k2 / d2};
+}
+
+GordonWilkeAirTable::GordonWilkeAirTable()
+    : count_(static_cast<std::size_t>((kTmax - kTmin) * kInvStep) + 1), mu_(count_), lambda_(count_) {
+  for (std::size_t k = 0; k < count_; ++k) {
+    const TransportProperties p = air_transport_gordon_wilke(kTmin + static_cast<double>(k) / kInvStep);
+    mu_[k] = p.mu;
+    lambda_[k] = p.lambda;
+  }
 }
 
 double sutherland_viscosity(double T, const TransportConfig& c) {

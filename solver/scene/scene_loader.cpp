@@ -1,11 +1,26 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "solver/scene/parse_sections.hpp"
 
 namespace dustlift {
 namespace {
+
+/// Drops tables left empty (sections a scene did not use), so the resolved scene parses
+/// back to the same scene.
+void prune_empty_tables(toml::table& t) {
+  std::vector<std::string> empty;
+  for (auto& [k, v] : t) {
+    if (auto* sub = v.as_table()) {
+      prune_empty_tables(*sub);
+      if (sub->empty()) empty.emplace_back(k.str());
+    }
+  }
+  for (const auto& k : empty) t.erase(k);
+}
 
 /// Applies one `a.b.c=value` override to the parsed document.
 void apply_override(toml::table& doc, const std::string& assignment) {
@@ -78,6 +93,7 @@ Scene parse_scene(const std::string& text, const std::string& name,
   parse_output(root.table("output"), scene.output, scene.run, scene.particles);
   root.finish();
   check_cross_section(scene);
+  prune_empty_tables(resolved);
 
   std::ostringstream out;
   out << "# Resolved scene: every key with the value used (defaults filled in).\n"

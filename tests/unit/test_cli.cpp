@@ -2,6 +2,17 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkRectilinearGrid.h>
+#include <vtkXMLRectilinearGridReader.h>
+
+#include "solver/gas/exact_riemann.hpp"
 
 #include "support/run_cli.hpp"
 
@@ -31,7 +42,35 @@ TEST(Cli, RunWritesResolvedSceneAndGasCollection) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "scene.resolved.toml"));
   EXPECT_TRUE(fs::exists(dir / "run.log"));
-  EXPECT_TRUE(fs::exists(dir / "gas.pvd"));
+  ASSERT_TRUE(fs::exists(dir / "gas.pvd"));
+  // The last dataset of gas.pvd is the final state: t = end_time, and its density is the
+  // exact Sod solution to the accuracy of 100 MUSCL-3 cells.
+  std::ifstream pvd(dir / "gas.pvd");
+  std::stringstream text;
+  text << pvd.rdbuf();
+  const std::string xml = text.str();
+  const std::regex entry(R"re(timestep="([^"]+)"[^>]*file="([^"]+)")re");
+  std::string last_file;
+  double last_time = -1.0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), entry); it != std::sregex_iterator(); ++it) {
+    last_time = std::stod((*it)[1].str());
+    last_file = (*it)[2].str();
+  }
+  EXPECT_NEAR(last_time, 0.2, 1e-12);
+  vtkNew<vtkXMLRectilinearGridReader> reader;
+  reader->SetFileName((dir / last_file).string().c_str());
+  reader->Update();
+  vtkRectilinearGrid* grid = reader->GetOutput();
+  ASSERT_EQ(grid->GetNumberOfCells(), 200);  // 100 x 2 cells
+  vtkDataArray* rho = grid->GetCellData()->GetArray("density");
+  ASSERT_NE(rho, nullptr);
+  const dustlift::ExactRiemannSolver exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4);
+  double l1 = 0.0;
+  for (int i = 0; i < 100; ++i) {
+    const double x = (i + 0.5) / 100.0;
+    l1 += std::abs(rho->GetTuple1(i) - exact.sample((x - 0.5) / 0.2).rho) / 100.0;
+  }
+  EXPECT_LT(l1, 1e-2) << "density L1 of the final .vtr against the exact solution";
   fs::remove_all(dir);
 }
 

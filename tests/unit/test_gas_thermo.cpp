@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "solver/gas/thermo.hpp"
 
@@ -62,6 +63,30 @@ TEST(ThermallyPerfectAir, NewtonInversionRecoversTemperature) {
   }
   EXPECT_TRUE(std::isnan(air.temperature(nan, 300.0)));
   EXPECT_LT(air.temperature(-1000.0, 300.0), 0.0);  // unphysical energy -> T < 0, caught as p < 0
+}
+
+TEST(ThermallyPerfectAir, BatchTemperaturesAgreeWithScalarSolve) {
+  const ThermallyPerfectAir air;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> e, guess;
+  for (double T : {30.0, 250.0, 300.0, 301.0, 383.76, 999.99, 1000.01, 1500.0, 5999.0, 7000.0}) {
+    for (double g : {T, T * 1.001, T * 0.7, 300.0, nan, -5.0, 1e7}) {
+      e.push_back(air.internal_energy(T));
+      guess.push_back(g);
+    }
+  }
+  e.push_back(-10.0);  // unphysical: T < 0 as in the scalar solve
+  guess.push_back(300.0);
+  e.push_back(nan);
+  guess.push_back(300.0);
+  std::vector<double> T(e.size());
+  air.temperatures(e.data(), guess.data(), T.data(), static_cast<int>(e.size()));
+  for (std::size_t k = 0; k + 1 < e.size(); ++k) {
+    const double scalar = air.temperature(e[k], guess[k]);
+    EXPECT_NEAR(T[k], scalar, 1e-11 * std::abs(scalar)) << "e=" << e[k] << " guess=" << guess[k];
+  }
+  EXPECT_LT(T[e.size() - 2], 0.0);
+  EXPECT_TRUE(std::isnan(T.back()));
 }
 
 TEST(CaloricallyPerfectGas, GammaLawRelations) {

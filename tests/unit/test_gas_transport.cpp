@@ -1,6 +1,7 @@
 // Transport: Gordon fits + Wilke rule against physics-reference 1.3, Sutherland, the model switch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/gas/thermo.hpp"
@@ -28,6 +29,32 @@ TEST(GordonWilke, AirValuesAt300And384K) {
   const TransportProperties a384 = air_transport_gordon_wilke(384.2);
   expect_rel(a384.mu, 2.22948e-5, 2e-5);
   expect_rel(a384.lambda, 3.18296e-2, 2e-5);
+}
+
+TEST(GordonWilke, FastAirPathEqualsGenericWilkeRule) {
+  for (double T : {200.0, 300.0, 384.2, 999.0, 1000.0, 2500.0}) {
+    const TransportProperties fast = air_transport_gordon_wilke(T);
+    const TransportProperties generic =
+        wilke_binary_mixture(oxygen_transport(T), nasa7::kMoleFractionO2, nasa7::kMolarMassO2, nitrogen_transport(T),
+                             nasa7::kMoleFractionN2, nasa7::kMolarMassN2);
+    expect_rel(fast.mu, generic.mu, 1e-13);
+    expect_rel(fast.lambda, generic.lambda, 1e-13);
+  }
+}
+
+TEST(GordonWilke, TableMatchesTheFits) {
+  const GordonWilkeAirTable table;
+  auto worst_above = [&](double t_low) {
+    double worst = 0.0;
+    for (double T = t_low; T < 6500.0; T += 0.37) {
+      const TransportProperties a = table(T), b = air_transport_gordon_wilke(T);
+      worst = std::max({worst, std::abs(a.mu / b.mu - 1), std::abs(a.lambda / b.lambda - 1)});
+    }
+    return worst;
+  };
+  EXPECT_LT(worst_above(200.0), 3e-6);  // the fits' range (measured 2.2e-6 at 201 K)
+  EXPECT_LT(worst_above(100.0), 2e-5);  // strong curvature of exp(C/T^2) below it
+  EXPECT_EQ(table(10.0).mu, air_transport_gordon_wilke(10.0).mu);  // outside: the fits themselves
 }
 
 TEST(GordonWilke, WilkeRuleOfIdenticalSpeciesIsIdentity) {

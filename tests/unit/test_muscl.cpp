@@ -80,4 +80,8 @@ TEST(Muscl, SettingsFromScheme) {
   EXPECT_EQ(muscl_settings(s).kappa, -1.0);
   s.reconstruction = Reconstruction::Muscl3;
   EXPECT_NEAR(muscl_settings(s).kappa, 1.0 / 3.0, 1e-16);
+  s.minmod_b = 4.0;
+  EXPECT_DOUBLE_EQ(muscl_settings(s).b, 4.0);
+  s.reconstruction = Reconstruction::Muscl2;
+  EXPECT_DOUBLE_EQ(muscl_settings(s).b, 2.0);  // clamped to the kappa = -1 bound
 }
