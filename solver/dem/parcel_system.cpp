@@ -80,6 +80,7 @@ ParcelInternals ParcelSystem::internals() const {
   s.inv_inertia_real = inv_inertia_real_;
   s.x_build = x_build_;
   s.y_build = y_build_;
+  s.wall_mask = wall_mask_;
   s.needs_rebuild = needs_rebuild_;
   s.time = time_;
   s.steps = steps_;
@@ -103,6 +104,9 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
   require(s.inv_mass_real.size() == n && s.inv_inertia_real.size() == n && s.x_build.size() == n &&
               s.y_build.size() == n,
           "a private per-parcel array has the wrong length");
+  // The wall mask exists once a neighbour list was built (it is rebuilt with the list).
+  require(s.wall_mask.size() == n || (s.needs_rebuild && s.wall_mask.empty()), "wall_mask has the wrong length");
+  for (std::uint8_t m : s.wall_mask) require(m < (1u << kWallCount), "wall_mask out of range");
   for (std::int32_t i : id) require(i >= 0 && static_cast<std::size_t>(i) < n, "parcel id out of range");
   // The contact history must index the parcels it was saved with.
   if (!nbr_offset.empty()) {
@@ -121,6 +125,7 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
   inv_inertia_real_ = s.inv_inertia_real;
   x_build_ = s.x_build;
   y_build_ = s.y_build;
+  wall_mask_ = s.wall_mask;
   needs_rebuild_ = s.needs_rebuild;
   time_ = s.time;
   steps_ = s.steps;

@@ -47,6 +47,7 @@ struct ParcelInit {
 struct ParcelInternals {
   std::vector<double> inv_mass_real, inv_inertia_real;  ///< 1/m and 1/I of one real particle
   std::vector<double> x_build, y_build;                 ///< positions at the last rebuild
+  std::vector<std::uint8_t> wall_mask;                  ///< walls within reach until the next rebuild
   bool needs_rebuild = true;
   double time = 0.0;
   long long steps = 0, rebuilds = 0;

@@ -80,6 +80,7 @@ Snapshot Simulation::snapshot() const {
   s.f64["dem/inv_inertia_real"] = in.inv_inertia_real;
   s.f64["dem/x_build"] = in.x_build;
   s.f64["dem/y_build"] = in.y_build;
+  s.i8["dem/wall_mask"].assign(in.wall_mask.begin(), in.wall_mask.end());
   s.f64["dem/time"] = {in.time};
   s.f64["dem/gravity"] = {in.gravity_x, in.gravity_y};
   s.i64["dem/needs_rebuild"] = {in.needs_rebuild ? 1 : 0};
@@ -136,6 +137,8 @@ void Simulation::restore(const Snapshot& s) {
     in.inv_inertia_real = find(s.f64, "dem/inv_inertia_real", n);
     in.x_build = find(s.f64, "dem/x_build", n);
     in.y_build = find(s.f64, "dem/y_build", n);
+    const auto& mask = find(s.i8, "dem/wall_mask");
+    in.wall_mask.assign(mask.begin(), mask.end());
     in.time = find(s.f64, "dem/time", 1)[0];
     const auto& gravity = find(s.f64, "dem/gravity", 2);
     in.gravity_x = gravity[0];
