@@ -1,5 +1,6 @@
 // dustlift command line: `run` a scene into an output folder, or print its `info`.
-// Exit codes: 0 success, 2 bad input (scene, options, output folder), 3 numerical failure.
+// Exit codes: 0 success, 2 bad input (scene, options, output folder, checkpoint),
+// 3 numerical failure. `run --restart CHECKPOINT` continues a run (docs/reliability.md).
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "insitu/checkpoint.hpp"
 #include "insitu/outputs.hpp"
 #include "solver/core/errors.hpp"
 #include "solver/scene/table_reader.hpp"
@@ -60,6 +62,38 @@ class Log {
   std::ofstream file_;
 };
 
+/// --set keys a restart may change: when to stop and what to write. Everything else would
+/// change the physics of a run that is half done (and make the checkpoint's state invalid).
+void check_restart_overrides(const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    const bool allowed = key == "run.end_time" || key == "run.max_steps" || key == "run.progress_interval" ||
+                         key.rfind("output.", 0) == 0;
+    if (!allowed) {
+      throw SceneError("--set '" + o + "': a restart may only change run.end_time, run.max_steps, " +
+                       "run.progress_interval and output.* keys");
+    }
+  }
+}
+
+/// Splits the newline-joined overrides a checkpoint stores.
+std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> v;
+  std::size_t start = 0;
+  while (!s.empty() && start <= s.size()) {
+    const std::size_t end = std::min(s.find('\n', start), s.size());
+    v.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return v;
+}
+
+const std::string& text_of(const Snapshot& s, const std::string& name, const std::string& path) {
+  const auto it = s.text.find(name);
+  if (it == s.text.end()) throw CheckpointError(path + ": missing text '" + name + "'");
+  return it->second;
+}
+
 void print_info(const Scene& scene, const Simulation& sim) {
   const Grid2D& g = sim.grid();
   fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
@@ -87,12 +121,15 @@ int main(int argc, char** argv) {
   CLI::App app{"dustlift: 2-D compressible CFD-DEM solver for shock-induced dust lifting"};
   app.require_subcommand(1);
 
-  std::string scene_path, out_dir;
+  std::string scene_path, out_dir, restart_path;
   std::vector<std::string> overrides;
   int threads = 0;
 
   auto* run = app.add_subcommand("run", "run a scene and write its output folder");
-  run->add_option("scene", scene_path, "scene file (TOML)")->required();
+  run->add_option("scene", scene_path, "scene file (TOML); not with --restart");
+  run->add_option("--restart", restart_path,
+                  "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
+                  "run.max_steps, run.progress_interval, output.*)");
   run->add_option("--out,-o", out_dir, "output folder (default: out/<run.name>)");
   run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)");
   run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
@@ -111,14 +148,57 @@ int main(int argc, char** argv) {
 
   Log log;
   try {
-    const Scene scene = load_scene(scene_path, overrides);
+    if (run->parsed() && scene_path.empty() == restart_path.empty()) {
+      throw SceneError("run: give either a scene file or --restart CHECKPOINT (one of them)");
+    }
+    Snapshot restart;
+    Scene scene;
+    if (!restart_path.empty()) {
+      restart = read_checkpoint(restart_path);
+      check_restart_overrides(overrides);
+      std::vector<std::string> all = split_lines(text_of(restart, "scene/overrides", restart_path));
+      all.insert(all.end(), overrides.begin(), overrides.end());
+      scene = parse_scene(text_of(restart, "scene/text", restart_path), text_of(restart, "scene/name", restart_path), all);
+      const auto t = restart.f64.find("run/time");
+      const double t_checkpoint = t != restart.f64.end() && t->second.size() == 1 ? t->second[0] : 0.0;
+      if (!(scene.run.end_time > t_checkpoint)) {
+        throw SceneError(fmt::format("key 'run.end_time': {:g} s is not after the checkpoint time {:g} s "
+                                     "(extend it with --set run.end_time=...)", scene.run.end_time, t_checkpoint));
+      }
+      scene_path = restart_path;
+    } else {
+      scene = load_scene(scene_path, overrides);
+    }
     if (info->parsed()) {
       Simulation sim(scene);
       print_info(scene, sim);
       return 0;
     }
-    if (out_dir.empty()) out_dir = (fs::path("out") / scene.run.name).string();
+    if (out_dir.empty()) {
+      if (restart_path.empty()) {
+        out_dir = (fs::path("out") / scene.run.name).string();
+      } else {
+        // Inside the checkpoint's folder, named by the step it continues from.
+        const auto s = restart.i64.find("run/step");
+        const long long step = s != restart.i64.end() && s->second.size() == 1 ? s->second[0] : 0;
+        out_dir = (fs::absolute(restart_path).parent_path() / fmt::format("restart_{}", step)).string();
+      }
+    }
+    if (!restart_path.empty()) {
+      std::error_code ec;
+      if (fs::equivalent(out_dir, fs::absolute(restart_path).parent_path(), ec)) {
+        throw SceneError("output folder '" + out_dir + "': a restart writes a new segment; it must not be the " +
+                         "folder of its checkpoint (its outputs would be overwritten)");
+      }
+    }
     Simulation sim(scene);  // validates the whole setup before anything is written
+    if (!restart_path.empty()) {
+      try {
+        sim.restore(restart);
+      } catch (const SnapshotError& e) {
+        throw CheckpointError(restart_path + ": does not fit its scene: " + e.what());
+      }
+    }
     prepare_output_dir(out_dir);
     {
       std::ofstream f(fs::path(out_dir) / "scene.resolved.toml");
@@ -126,6 +206,11 @@ int main(int argc, char** argv) {
     }
     log.open(fs::path(out_dir) / "run.log");
     log.line(fmt::format("dustlift run {} -> {} ({} threads)", scene_path, out_dir, omp_get_max_threads()));
+    if (!restart_path.empty()) {
+      log.line(fmt::format("  restarted at t = {:.6e} s, step {}", sim.time(), sim.step()));
+    }
+    const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
+    sim.set_checkpoint_writer([&](const Simulation& s) { write_checkpoint(checkpoint_path, s.snapshot()); });
     for (const auto& e : sim.enabled_effects()) log.line("  " + e);
     for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
     sim.set_progress_callback([&](const Progress& p) {
@@ -140,6 +225,9 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const SceneError& e) {
     std::cerr << "dustlift: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const CheckpointError& e) {
+    std::cerr << "dustlift: error: checkpoint: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
     std::cerr << "dustlift: error: " << e.what() << "\n";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace dustlift {
 
@@ -31,6 +32,9 @@ std::vector<double> build_axis_nodes(const AxisSpec& s) {
   std::vector<double> nodes;
   if (s.cell_size <= 0.0) {
     if (s.cells == 0) throw std::invalid_argument("axis needs at least one cell");
+    if (s.cells > kMaxAxisCells) {
+      throw std::invalid_argument("more than " + std::to_string(kMaxAxisCells) + " cells on one axis");
+    }
     nodes.resize(s.cells + 1);
     for (std::size_t i = 0; i <= s.cells; ++i) {
       nodes[i] = s.start + (s.end - s.start) * static_cast<double>(i) / static_cast<double>(s.cells);
@@ -43,6 +47,11 @@ std::vector<double> build_axis_nodes(const AxisSpec& s) {
     throw std::invalid_argument("uniform region must lie inside [start, end] and have positive length");
   }
   const double n_uniform_real = (ue - us) / h;
+  if (!(n_uniform_real + static_cast<double>(s.cells_below) + static_cast<double>(s.cells_above) <=
+        static_cast<double>(kMaxAxisCells))) {
+    throw std::invalid_argument("cell_size and cells_below/cells_above give more than " +
+                                std::to_string(kMaxAxisCells) + " cells on one axis");
+  }
   const auto n_uniform = static_cast<std::size_t>(std::llround(n_uniform_real));
   if (n_uniform == 0 || std::abs(n_uniform_real - static_cast<double>(n_uniform)) > 1e-6) {
     throw std::invalid_argument("uniform region length must be a whole number of cell_size");

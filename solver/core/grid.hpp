@@ -23,8 +23,14 @@ struct AxisSpec {
   std::size_t cells_above = 0;
 };
 
+/// Most cells one axis may have. Far beyond any runnable 2-D grid (the paper's axes have
+/// 1,900 and 160), it keeps a mistyped cell_size (say 250e-16 for 250e-6) from asking for
+/// terabytes while the scene is parsed (found by fuzz/fuzz_scene_parser).
+inline constexpr std::size_t kMaxAxisCells = 1'000'000;
+
 /// Node coordinates of one axis (n_cells + 1 nodes), built from an AxisSpec.
-/// Throws std::invalid_argument with a readable message on an impossible spec.
+/// Throws std::invalid_argument with a readable message on an impossible spec (including
+/// more than kMaxAxisCells cells).
 std::vector<double> build_axis_nodes(const AxisSpec& spec);
 
 /// Growth ratio r of a geometric progression of `cells` cells whose first cell is `first`

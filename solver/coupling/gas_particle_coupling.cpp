@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "solver/core/derivatives.hpp"
 #include "solver/core/errors.hpp"
@@ -76,6 +77,14 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
     dpdx_ = Field2D(grid);
     dpdy_ = Field2D(grid);
   }
+}
+
+void GasParticleCoupling::restore_carried_state(const CarriedState& s) {
+  if (s.alpha_p.size() != alpha_p_.size() || s.rows_touched < 0 || s.rows_touched > grid_.ny()) {
+    throw std::invalid_argument("GasParticleCoupling: carried state does not fit the grid");
+  }
+  alpha_p_.raw() = s.alpha_p;
+  rows_touched_ = s.rows_touched;
 }
 
 bool GasParticleCoupling::needs_vorticity() const { return cfg_.magnus || cfg_.rotation_torque; }

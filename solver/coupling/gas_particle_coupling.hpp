@@ -56,6 +56,17 @@ class GasParticleCoupling {
 
   bool needs_vorticity() const;
 
+  /// What one advance() leaves for the next (for checkpoints): the deposited alpha_p
+  /// (ghosts included; sampled at the start of the next step) and the rows it touched
+  /// (cleared at the next deposit). Everything else is rebuilt within each step.
+  struct CarriedState {
+    std::vector<double> alpha_p;
+    int rows_touched = 0;
+  };
+  CarriedState carried_state() const { return {alpha_p_.raw(), rows_touched_}; }
+  /// Throws std::invalid_argument when the field size or row count does not fit the grid.
+  void restore_carried_state(const CarriedState& s);
+
  private:
   struct Sample {
     double rho, u, v, p, T, mu, lambda, c, cp, alpha_g, vorticity, dpdx, dpdy;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace dustlift {
 
@@ -71,6 +72,66 @@ void ParcelSystem::add_parcel(const ParcelInit& p) {
   nbr_image.clear();
   nbr_delta.clear();
   needs_rebuild_ = true;
+}
+
+ParcelInternals ParcelSystem::internals() const {
+  ParcelInternals s;
+  s.inv_mass_real = inv_mass_real_;
+  s.inv_inertia_real = inv_inertia_real_;
+  s.x_build = x_build_;
+  s.y_build = y_build_;
+  s.wall_mask = wall_mask_;
+  s.needs_rebuild = needs_rebuild_;
+  s.time = time_;
+  s.steps = steps_;
+  s.rebuilds = rebuilds_;
+  s.gravity_x = cfg_.gravity_x;
+  s.gravity_y = cfg_.gravity_y;
+  return s;
+}
+
+void ParcelSystem::restore_internals(const ParcelInternals& s) {
+  const std::size_t n = size();
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("ParcelSystem::restore_internals: ") + what);
+  };
+  for (const auto* v : {&y, &vx, &vy, &omega, &temperature, &diameter, &radius, &mass, &inertia, &n_real,
+                        &x_initial, &y_initial, &contact_fx, &contact_fy, &contact_torque, &drag_fx, &drag_fy,
+                        &magnus_fx, &magnus_fy, &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate}) {
+    require(v->size() == n, "a per-parcel array has the wrong length");
+  }
+  require(id.size() == n && wall_delta.size() == n * kWallCount, "id or wall_delta has the wrong length");
+  require(s.inv_mass_real.size() == n && s.inv_inertia_real.size() == n && s.x_build.size() == n &&
+              s.y_build.size() == n,
+          "a private per-parcel array has the wrong length");
+  // The wall mask exists once a neighbour list was built (it is rebuilt with the list).
+  require(s.wall_mask.size() == n || (s.needs_rebuild && s.wall_mask.empty()), "wall_mask has the wrong length");
+  for (std::uint8_t m : s.wall_mask) require(m < (1u << kWallCount), "wall_mask out of range");
+  for (std::int32_t i : id) require(i >= 0 && static_cast<std::size_t>(i) < n, "parcel id out of range");
+  // The contact history must index the parcels it was saved with.
+  if (!nbr_offset.empty()) {
+    require(nbr_offset.size() == n + 1 && nbr_offset.front() == 0, "nbr_offset has the wrong length");
+    for (std::size_t i = 0; i < n; ++i) require(nbr_offset[i] <= nbr_offset[i + 1], "nbr_offset not monotone");
+    const auto slots = static_cast<std::size_t>(nbr_offset[n]);
+    require(nbr_index.size() == slots && nbr_image.size() == slots && nbr_delta.size() == slots,
+            "neighbour slots have the wrong length");
+    for (std::int32_t j : nbr_index) require(j >= 0 && static_cast<std::size_t>(j) < n, "nbr_index out of range");
+    for (std::int8_t im : nbr_image) require(im >= -1 && im <= 1, "nbr_image out of range");
+  } else {
+    require(nbr_index.empty() && nbr_image.empty() && nbr_delta.empty(), "neighbour slots without offsets");
+    require(s.needs_rebuild, "no neighbour list but no rebuild pending");
+  }
+  inv_mass_real_ = s.inv_mass_real;
+  inv_inertia_real_ = s.inv_inertia_real;
+  x_build_ = s.x_build;
+  y_build_ = s.y_build;
+  wall_mask_ = s.wall_mask;
+  needs_rebuild_ = s.needs_rebuild;
+  time_ = s.time;
+  steps_ = s.steps;
+  rebuilds_ = s.rebuilds;
+  cfg_.gravity_x = s.gravity_x;
+  cfg_.gravity_y = s.gravity_y;
 }
 
 double ParcelSystem::stable_time_step() const {

@@ -41,6 +41,19 @@ struct ParcelInit {
   double temperature = 300.0;       ///< K
 };
 
+/// The private state of a ParcelSystem that its next step reads, for checkpoints: with the
+/// public arrays (state, force parts, contact history) it continues a run bitwise.
+/// Per-parcel vectors are in the current (cell-sorted) parcel order.
+struct ParcelInternals {
+  std::vector<double> inv_mass_real, inv_inertia_real;  ///< 1/m and 1/I of one real particle
+  std::vector<double> x_build, y_build;                 ///< positions at the last rebuild
+  std::vector<std::uint8_t> wall_mask;                  ///< walls within reach until the next rebuild
+  bool needs_rebuild = true;
+  double time = 0.0;
+  long long steps = 0, rebuilds = 0;
+  double gravity_x = 0.0, gravity_y = 0.0;              ///< may differ from the scene (set_gravity)
+};
+
 class ParcelSystem {
  public:
   /// Contact laws, walls, domain, gravity, skin and heat capacity come from `cfg`;
@@ -94,6 +107,12 @@ class ParcelSystem {
 
   /// Forces a neighbour rebuild (and cell re-sort) before the next step.
   void invalidate_neighbours() { needs_rebuild_ = true; }
+
+  /// Checkpoint access to the private state (see ParcelInternals).
+  ParcelInternals internals() const;
+  /// Restores it after the public arrays have been restored; throws std::invalid_argument
+  /// when a per-parcel vector does not match size() or the contact history is inconsistent.
+  void restore_internals(const ParcelInternals& s);
 
   // ---- Per-parcel state (SoA; the order changes when parcels are re-sorted by cell) ----
   std::vector<std::int32_t> id;             ///< stable parcel id (order of add_parcel)

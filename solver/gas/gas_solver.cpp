@@ -664,4 +664,11 @@ Field2D& GasSolver::porosity() { return impl_->alpha; }
 
 Field2D& GasSolver::source(int k) { return impl_->source[static_cast<std::size_t>(k)]; }
 
+Field2D& GasSolver::primitive_field(int k) {
+  Impl& m = *impl_;
+  Field2D* fields[5] = {&m.rho, &m.u, &m.v, &m.p, &m.T};
+  if (k < 0 || k > 4) throw std::out_of_range("GasSolver::primitive_field: k must be 0..4");
+  return *fields[k];
+}
+
 }  // namespace dustlift

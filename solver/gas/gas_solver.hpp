@@ -69,6 +69,13 @@ class GasSolver {
   /// of eqs. 2-3); zero by default, held constant over one step(). k as in conserved().
   Field2D& source(int k);
 
+  /// Checkpoint restore only: primitive field k = 0..4 (rho, u, v, p, T), ghosts included.
+  /// The thermally perfect inversion e -> T starts its Newton iteration from the stored T,
+  /// so recomputing the primitives from conserved(k) would change their last bits; a bitwise
+  /// continuation writes them back as saved (with conserved, porosity and source) and does
+  /// not call refresh_primitives().
+  Field2D& primitive_field(int k);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

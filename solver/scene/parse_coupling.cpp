@@ -30,15 +30,17 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, cons
   c.heat_transfer = t.boolean("heat_transfer", c.heat_transfer);
   const auto rule = t.choice("interpolation", "triangle", {"triangle", "bilinear"});
   c.interpolation = rule == "triangle" ? InterpolationRule::Triangle : InterpolationRule::Bilinear;
-  c.influence_width = t.number("influence_width", dem.parcel_diameter, Range::non_negative());
   const double min_cell = std::min(Axis(build_axis_nodes(grid.x), 0).min_width(),
                                    Axis(build_axis_nodes(grid.y), 0).min_width());
-  if (c.influence_width > min_cell) {
-    t.fail("influence_width", "must not exceed the smallest cell (" + std::to_string(min_cell) + " m)");
-  }
+  // Checked before influence_width, whose default is the parcel diameter: the message then
+  // names the key the user set.
   if (dem.parcel_diameter > min_cell) {
     throw SceneError(t.file() + ": key 'particles.parcel_diameter': parcels larger than the smallest grid cell (" +
                      std::to_string(min_cell) + " m) break the unresolved-particle model (eqs. 12-16)");
+  }
+  c.influence_width = t.number("influence_width", dem.parcel_diameter, Range::non_negative());
+  if (c.influence_width > min_cell) {
+    t.fail("influence_width", "must not exceed the smallest cell (" + std::to_string(min_cell) + " m)");
   }
   c.max_volume_fraction = t.number("max_volume_fraction", c.max_volume_fraction, Range::open(0.0, 1.0));
   t.finish();

@@ -36,6 +36,8 @@ struct OutputConfig {
   double band_duration = 0.0;             ///< s, last bin end (default: run end time)
   double contact_window = 1e-5;           ///< s, contact-force averaging window (paper: 0.01 ms)
   double shock_threshold = 0.05;          ///< relative pressure rise marking the shock
+  /// s of simulated time between checkpoints (OUTDIR/checkpoint.h5); 0: only at the end.
+  double checkpoint_interval = 0.0;
 };
 
 struct GridConfig {
@@ -52,6 +54,10 @@ struct Scene {
   CouplingConfig coupling;  ///< used when particles are enabled
   OutputConfig output;
   std::string resolved_toml;  ///< the whole scene with every default filled in
+  /// The text and --set overrides it was parsed from: a checkpoint stores them so that a
+  /// restart re-parses exactly the same scene (docs/reliability.md).
+  std::string source_text;
+  std::vector<std::string> overrides;
 };
 
 /// Reads, overrides (`key.path=value`, TOML value syntax; bare words are strings) and

@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -77,6 +78,8 @@ Scene parse_scene(const std::string& text, const std::string& name,
 
   Scene scene;
   scene.source_file = name;
+  scene.source_text = text;
+  scene.overrides = overrides;
   toml::table resolved;
   TableReader root(&doc, "", name, &resolved);
   using namespace scene_detail;
@@ -102,6 +105,9 @@ Scene parse_scene(const std::string& text, const std::string& name,
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  // A folder opens as a stream on Linux and reads as empty: name it instead.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a folder, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open scene file");
   std::ostringstream buf;

@@ -113,27 +113,44 @@ double Simulation::advance(double dt_max) {
   return dt;
 }
 
+void Simulation::set_checkpoint_writer(std::function<void(const Simulation&)> writer) {
+  checkpoint_ = std::move(writer);
+}
+
 void Simulation::run(const std::string& output_dir) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
+  const double time0 = time_;
   auto last_report = t0;
   const double end = scene_.run.end_time;
   const double interval = scene_.output.interval;
-  long long next_output = 1;
+  const double checkpoint_interval = scene_.output.checkpoint_interval;
+  // First checkpoint multiple strictly after the start (a restart does not rewrite its own).
+  long long next_checkpoint = 1;
+  if (checkpoint_interval > 0.0) {
+    next_checkpoint = static_cast<long long>(std::floor(time_ / checkpoint_interval)) + 1;
+  }
 
+  // A restarted run's first frame is the restored state (the segment's start).
   for (auto& o : observers_) o->on_start(view(output_dir));
   double dt = 0.0;
   while (time_ < end * (1.0 - 1e-14)) {
     if (scene_.run.max_steps > 0 && step_ >= scene_.run.max_steps) break;
     double target = end;
-    if (interval > 0.0) target = std::min(target, static_cast<double>(next_output) * interval);
+    if (interval > 0.0) target = std::min(target, static_cast<double>(next_output_) * interval);
     dt = advance(target - time_);
     const StateView v = view(output_dir);
     for (auto& o : observers_) o->on_step(v);
-    if (interval > 0.0 && time_ >= static_cast<double>(next_output) * interval * (1.0 - 1e-12) &&
+    if (interval > 0.0 && time_ >= static_cast<double>(next_output_) * interval * (1.0 - 1e-12) &&
         time_ < end * (1.0 - 1e-14)) {
       for (auto& o : observers_) o->on_output(v);
-      ++next_output;
+      ++next_output_;
+    }
+    if (checkpoint_ && checkpoint_interval > 0.0 &&
+        time_ >= static_cast<double>(next_checkpoint) * checkpoint_interval * (1.0 - 1e-12) &&
+        time_ < end * (1.0 - 1e-14)) {
+      checkpoint_(*this);
+      next_checkpoint = static_cast<long long>(std::floor(time_ / checkpoint_interval)) + 1;
     }
     const auto now = clock::now();
     if (progress_ && std::chrono::duration<double>(now - last_report).count() >= scene_.run.progress_interval) {
@@ -144,11 +161,12 @@ void Simulation::run(const std::string& output_dir) {
       p.dt = dt;
       p.step = step_;
       p.wall_seconds = std::chrono::duration<double>(now - t0).count();
-      p.eta_seconds = time_ > 0.0 ? p.wall_seconds * (end - time_) / time_ : 0.0;
+      p.eta_seconds = time_ > time0 ? p.wall_seconds * (end - time_) / (time_ - time0) : 0.0;
       progress_(p);
     }
   }
   for (auto& o : observers_) o->on_finish(view(output_dir));
+  if (checkpoint_) checkpoint_(*this);
 }
 
 }  // namespace dustlift

@@ -11,6 +11,7 @@
 #include "solver/gas/gas_solver.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
+#include "solver/sim/snapshot.hpp"
 
 namespace dustlift {
 
@@ -30,8 +31,24 @@ class Simulation {
   void set_progress_callback(std::function<void(const Progress&)> callback);
 
   /// Runs to the scene's end time (or max_steps). Throws NumericalFailure on a blow-up,
-  /// naming step, time, cell and variable.
+  /// naming step, time, cell and variable. With a checkpoint writer set, it is called at the
+  /// end of the first step at or after each multiple of output.checkpoint_interval and
+  /// once after the last step (never after a failure). Steps are not clipped to checkpoint
+  /// times, so the step sequence does not depend on the checkpoint interval.
   void run(const std::string& output_dir);
+
+  /// Called with the simulation whenever run() checkpoints (insitu/checkpoint.hpp writes it).
+  void set_checkpoint_writer(std::function<void(const Simulation&)> writer);
+
+  /// Everything the next step reads (gas, parcels with contact history, DEM internals,
+  /// coupling carry-over, time, step and output counters, scene text). See snapshot.hpp.
+  Snapshot snapshot() const;
+  /// Restores a snapshot taken from a simulation of the same scene (the caller builds this
+  /// one from the scene text the snapshot carries). Throws SnapshotError if it does not fit.
+  /// The run then continues bitwise as the one the snapshot was taken from.
+  void restore(const Snapshot& s);
+  /// Index of the next output time (next_output * output.interval).
+  long long next_output() const { return next_output_; }
 
   /// Advances one step of at most `dt_max` (used by run() and by tests).
   double advance(double dt_max);
@@ -59,8 +76,10 @@ class Simulation {
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
   std::vector<std::unique_ptr<Observer>> observers_;
   std::function<void(const Progress&)> progress_;
+  std::function<void(const Simulation&)> checkpoint_;
   double time_ = 0.0;
   long long step_ = 0;
+  long long next_output_ = 1;
 };
 
 /// Ghost layers the gas scheme needs (MUSCL: 2).

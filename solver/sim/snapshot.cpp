@@ -1,0 +1,194 @@
+// Simulation::snapshot / restore: the state a bitwise continuation needs, by name.
+// What is (and is not) in it and why: docs/reliability.md.
+#include <cmath>
+#include <string>
+
+#include "solver/sim/simulation.hpp"
+
+namespace dustlift {
+namespace {
+
+/// Per-parcel double arrays of the ParcelSystem, by checkpoint name (all of them: state,
+/// properties, force parts; the order of the system is kept).
+template <class PS>
+auto parcel_doubles(PS& p) {
+  return std::array{std::pair{"x", &p.x}, std::pair{"y", &p.y}, std::pair{"vx", &p.vx}, std::pair{"vy", &p.vy},
+                    std::pair{"omega", &p.omega}, std::pair{"temperature", &p.temperature},
+                    std::pair{"diameter", &p.diameter}, std::pair{"radius", &p.radius}, std::pair{"mass", &p.mass},
+                    std::pair{"inertia", &p.inertia}, std::pair{"n_real", &p.n_real},
+                    std::pair{"x_initial", &p.x_initial}, std::pair{"y_initial", &p.y_initial},
+                    std::pair{"contact_fx", &p.contact_fx}, std::pair{"contact_fy", &p.contact_fy},
+                    std::pair{"contact_torque", &p.contact_torque}, std::pair{"drag_fx", &p.drag_fx},
+                    std::pair{"drag_fy", &p.drag_fy}, std::pair{"magnus_fx", &p.magnus_fx},
+                    std::pair{"magnus_fy", &p.magnus_fy}, std::pair{"pressure_fx", &p.pressure_fx},
+                    std::pair{"pressure_fy", &p.pressure_fy}, std::pair{"fluid_torque", &p.fluid_torque},
+                    std::pair{"heat_rate", &p.heat_rate}, std::pair{"nbr_delta", &p.nbr_delta},
+                    std::pair{"wall_delta", &p.wall_delta}};
+}
+
+const char* const kPrimitiveNames[5] = {"rho", "u", "v", "p", "T"};
+
+template <class T>
+const std::vector<T>& find(const std::map<std::string, std::vector<T>>& m, const std::string& name,
+                           std::size_t expected_size = 0) {
+  const auto it = m.find(name);
+  if (it == m.end()) throw SnapshotError("missing array '" + name + "'");
+  if (expected_size != 0 && it->second.size() != expected_size) {
+    throw SnapshotError("array '" + name + "' has " + std::to_string(it->second.size()) + " values, expected " +
+                        std::to_string(expected_size));
+  }
+  return it->second;
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t k = 0; k < v.size(); ++k) s += (k ? "\n" : "") + v[k];
+  return s;
+}
+
+}  // namespace
+
+Snapshot Simulation::snapshot() const {
+  Snapshot s;
+  s.text["scene/name"] = scene_.source_file;
+  s.text["scene/text"] = scene_.source_text;
+  s.text["scene/overrides"] = join(scene_.overrides);
+  s.text["scene/resolved"] = scene_.resolved_toml;
+  s.f64["run/time"] = {time_};
+  s.f64["run/output_interval"] = {scene_.output.interval};
+  s.i64["run/step"] = {step_};
+  s.i64["run/next_output"] = {next_output_};
+  // Gas: every field step() reads, ghosts included (1-D, row-major (ny + 2g) x (nx + 2g)).
+  s.i64["gas/shape"] = {grid_.ny() + 2 * grid_.ghosts(), grid_.nx() + 2 * grid_.ghosts()};
+  GasSolver& gas = const_cast<GasSolver&>(*gas_);  // read only; the accessors are non-const
+  for (int k = 0; k < 4; ++k) {
+    s.f64["gas/conserved_" + std::to_string(k)] = gas.conserved(k).raw();
+    s.f64["gas/source_" + std::to_string(k)] = gas.source(k).raw();
+  }
+  s.f64["gas/porosity"] = gas.porosity().raw();
+  for (int k = 0; k < 5; ++k) s.f64[std::string("gas/") + kPrimitiveNames[k]] = gas.primitive_field(k).raw();
+  if (!parcels_) return s;
+
+  const ParcelSystem& p = *parcels_;
+  for (const auto& [name, v] : parcel_doubles(p)) s.f64[std::string("parcels/") + name] = *v;
+  s.i32["parcels/id"] = p.id;
+  s.i32["parcels/nbr_offset"] = p.nbr_offset;
+  s.i32["parcels/nbr_index"] = p.nbr_index;
+  s.i8["parcels/nbr_image"] = p.nbr_image;
+  const ParcelInternals in = p.internals();
+  s.f64["dem/inv_mass_real"] = in.inv_mass_real;
+  s.f64["dem/inv_inertia_real"] = in.inv_inertia_real;
+  s.f64["dem/x_build"] = in.x_build;
+  s.f64["dem/y_build"] = in.y_build;
+  s.i8["dem/wall_mask"].assign(in.wall_mask.begin(), in.wall_mask.end());
+  s.f64["dem/time"] = {in.time};
+  s.f64["dem/gravity"] = {in.gravity_x, in.gravity_y};
+  s.i64["dem/needs_rebuild"] = {in.needs_rebuild ? 1 : 0};
+  s.i64["dem/steps"] = {in.steps};
+  s.i64["dem/rebuilds"] = {in.rebuilds};
+  s.i64["dem/flags"] = {p.external_forces ? 1 : 0, p.integrate_temperature ? 1 : 0};
+  const GasParticleCoupling::CarriedState c = coupling_->carried_state();
+  s.f64["coupling/alpha_p"] = c.alpha_p;
+  s.i64["coupling/rows_touched"] = {c.rows_touched};
+  return s;
+}
+
+void Simulation::restore(const Snapshot& s) {
+  const auto shape = find(s.i64, "gas/shape", 2);
+  if (shape[0] != grid_.ny() + 2 * grid_.ghosts() || shape[1] != grid_.nx() + 2 * grid_.ghosts()) {
+    throw SnapshotError("gas/shape " + std::to_string(shape[0]) + " x " + std::to_string(shape[1]) +
+                        " does not match the scene's grid");
+  }
+  const bool has_parcels = s.i32.count("parcels/id") != 0;
+  if (has_parcels != (parcels_ != nullptr)) {
+    throw SnapshotError(has_parcels ? "the checkpoint has parcels but the scene has none"
+                                    : "the scene has particles but the checkpoint has no parcels");
+  }
+  const double t = find(s.f64, "run/time", 1)[0];
+  const long long step = find(s.i64, "run/step", 1)[0];
+  long long next_output = find(s.i64, "run/next_output", 1)[0];
+  if (!std::isfinite(t) || t < 0.0 || step < 0 || next_output < 1) throw SnapshotError("run time or counters out of range");
+  const std::size_t cells = gas_->conserved(0).size();
+  // Read everything first, assign after: a failing restore leaves nothing half-written.
+  std::array<const std::vector<double>*, 14> gas_fields{};
+  for (int k = 0; k < 4; ++k) {
+    gas_fields[k] = &find(s.f64, "gas/conserved_" + std::to_string(k), cells);
+    gas_fields[4 + k] = &find(s.f64, "gas/source_" + std::to_string(k), cells);
+  }
+  gas_fields[8] = &find(s.f64, "gas/porosity", cells);
+  for (int k = 0; k < 5; ++k) gas_fields[9 + k] = &find(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
+
+  if (parcels_) {
+    ParcelSystem& p = *parcels_;
+    const std::size_t n = p.size();
+    ParcelSystem restored = p;  // validated on the copy, then swapped in
+    for (const auto& [name, v] : parcel_doubles(restored)) {
+      const std::string full = std::string("parcels/") + name;
+      const std::string sname = name;
+      const std::size_t expected = sname == "nbr_delta" ? 0 : sname == "wall_delta" ? n * kWallCount : n;
+      *v = find(s.f64, full, expected);
+    }
+    restored.id = find(s.i32, "parcels/id", n);
+    restored.nbr_offset = find(s.i32, "parcels/nbr_offset");
+    restored.nbr_index = find(s.i32, "parcels/nbr_index");
+    restored.nbr_image = find(s.i8, "parcels/nbr_image");
+    ParcelInternals in;
+    in.inv_mass_real = find(s.f64, "dem/inv_mass_real", n);
+    in.inv_inertia_real = find(s.f64, "dem/inv_inertia_real", n);
+    in.x_build = find(s.f64, "dem/x_build", n);
+    in.y_build = find(s.f64, "dem/y_build", n);
+    const auto& mask = find(s.i8, "dem/wall_mask");
+    in.wall_mask.assign(mask.begin(), mask.end());
+    in.time = find(s.f64, "dem/time", 1)[0];
+    const auto& gravity = find(s.f64, "dem/gravity", 2);
+    in.gravity_x = gravity[0];
+    in.gravity_y = gravity[1];
+    in.needs_rebuild = find(s.i64, "dem/needs_rebuild", 1)[0] != 0;
+    in.steps = find(s.i64, "dem/steps", 1)[0];
+    in.rebuilds = find(s.i64, "dem/rebuilds", 1)[0];
+    const auto& flags = find(s.i64, "dem/flags", 2);
+    if ((flags[0] != 0) != p.external_forces || (flags[1] != 0) != p.integrate_temperature) {
+      throw SnapshotError("dem/flags do not match the scene's coupling");
+    }
+    // Ids must be a permutation of 0..n-1 (the coupling indexes its arrays by id).
+    std::vector<char> seen(n, 0);
+    for (std::int32_t i : restored.id) {
+      if (i < 0 || static_cast<std::size_t>(i) >= n || seen[static_cast<std::size_t>(i)]) {
+        throw SnapshotError("parcels/id is not a permutation of 0.." + std::to_string(n - 1));
+      }
+      seen[static_cast<std::size_t>(i)] = 1;
+    }
+    try {
+      restored.restore_internals(in);
+    } catch (const std::invalid_argument& e) {
+      throw SnapshotError(e.what());
+    }
+    GasParticleCoupling::CarriedState c;
+    c.alpha_p = find(s.f64, "coupling/alpha_p", cells);
+    c.rows_touched = static_cast<int>(find(s.i64, "coupling/rows_touched", 1)[0]);
+    try {
+      coupling_->restore_carried_state(c);
+    } catch (const std::invalid_argument& e) {
+      throw SnapshotError(e.what());
+    }
+    p = std::move(restored);
+  }
+  for (int k = 0; k < 4; ++k) {
+    gas_->conserved(k).raw() = *gas_fields[k];
+    gas_->source(k).raw() = *gas_fields[4 + k];
+  }
+  gas_->porosity().raw() = *gas_fields[8];
+  for (int k = 0; k < 5; ++k) gas_->primitive_field(k).raw() = *gas_fields[9 + k];
+  time_ = t;
+  step_ = step;
+  // A restart may change output.interval: the next output is then the first multiple after t.
+  const auto stored_interval = s.f64.find("run/output_interval");
+  const double interval = scene_.output.interval;
+  if (stored_interval == s.f64.end() || stored_interval->second.size() != 1 ||
+      stored_interval->second[0] != interval) {
+    next_output = interval > 0.0 ? static_cast<long long>(std::floor(t / interval * (1.0 + 1e-12))) + 1 : 1;
+  }
+  next_output_ = next_output;
+}
+
+}  // namespace dustlift

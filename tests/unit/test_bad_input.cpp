@@ -1,0 +1,156 @@
+// The bad-input table (docs/reliability.md) through the CLI binary: every row must exit with
+// code 2, print exactly one line that names the problem (key, file or folder), and leave no
+// output folder behind.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "support/run_cli.hpp"
+
+namespace fs = std::filesystem;
+using dustlift::testing::CliResult;
+using dustlift::testing::fresh_dir;
+using dustlift::testing::run_cli;
+using dustlift::testing::write_file;
+
+namespace {
+
+/// A small valid coupled scene: 0.5 mm cells, 0.1 mm parcels in a 1 mm layer.
+const char* kScene = R"([run]
+end_time = 2e-6
+[grid]
+x = { start = 0.0, end = 0.004, cells = 8 }
+y = { start = 0.0, end = 0.002, cells = 4 }
+[boundary]
+left = "periodic"
+right = "periodic"
+bottom = "slip_wall"
+top = "slip_wall"
+[initial]
+kind = "uniform"
+state = { p = 101325.0, T = 300.0, u = 10.0 }
+[particles.layer]
+x_min = 0.0
+x_max = 0.004
+y_min = 0.0
+y_max = 0.001
+volume_fraction = 0.4
+[output]
+vtk = false
+)";
+
+struct Row {
+  const char* name;
+  std::string scene;      ///< file content ("" = the valid scene)
+  const char* arguments;  ///< extra CLI arguments; {scene}, {dir} are substituted
+  const char* named;      ///< what the one-line message must name
+};
+
+std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+  return s;
+}
+
+std::string without_line(const std::string& text, const std::string& line) {
+  return replace_all(text, line + "\n", "");
+}
+
+void expect_bad_input(const CliResult& r, const std::string& named, const fs::path& out, const std::string& row) {
+  EXPECT_EQ(r.exit_code, 2) << row << "\n" << r.output;
+  EXPECT_NE(r.output.find(named), std::string::npos) << row << ": message must name '" << named << "'\n" << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << row << ": one line\n" << r.output;
+  EXPECT_EQ(r.output.rfind("dustlift: error: ", 0), 0u) << row << "\n" << r.output;
+  EXPECT_FALSE(fs::exists(out)) << row << ": a rejected run must leave no output folder";
+}
+
+class BadInput : public ::testing::TestWithParam<Row> {};
+
+}  // namespace
+
+TEST_P(BadInput, ExitsWith2OneLineNamingTheProblemAndWritesNothing) {
+  const Row& row = GetParam();
+  const auto dir = fresh_dir(std::string("badin_") + row.name);
+  const fs::path scene = dir / "scene.toml";
+  write_file(scene, row.scene.empty() ? kScene : row.scene);
+  const fs::path out = dir / "out";
+  std::string args = replace_all(replace_all(row.arguments, "{scene}", scene.string()), "{dir}", dir.string());
+  if (args.find("--out") == std::string::npos) args += " --out " + out.string();
+  const CliResult r = run_cli("run " + args);
+  expect_bad_input(r, row.named, out, row.name);
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, BadInput,
+    ::testing::Values(
+        Row{"missing_end_time", without_line(kScene, "end_time = 2e-6"), "{scene}", "run.end_time"},
+        Row{"missing_grid", replace_all(without_line(kScene, "x = { start = 0.0, end = 0.004, cells = 8 }"), "y = { start = 0.0, end = 0.002, cells = 4 }\n", ""),
+            "{scene}", "grid.x"},
+        Row{"missing_cells", "", "{scene} --set grid.x={start=0.0,end=0.004}", "grid.x.cells"},
+        Row{"wrong_type_number", "", "{scene} --set run.end_time=\\\"soon\\\"", "run.end_time"},
+        Row{"wrong_type_bool", "", "{scene} --set coupling.drag=3", "coupling.drag"},
+        Row{"wrong_type_table", "", "{scene} --set particles.layer=5", "particles.layer"},
+        Row{"zero_cells", "", "{scene} --set grid.y.cells=0", "grid.y.cells"},
+        Row{"negative_cells", "", "{scene} --set grid.x.cells=-8", "grid.x.cells"},
+        Row{"too_many_cells", "", "{scene} --set grid.x.cells=2000000", "grid.x.cells"},
+        Row{"cell_size_typo", "", "{scene} --set grid.x={start=0.0,end=0.004,cell_size=2.5e-14}", "grid.x.cell_size"},
+        Row{"inverted_axis", "", "{scene} --set grid.x.end=-0.004", "grid.x.end"},
+        Row{"negative_diameter", "", "{scene} --set particles.diameter=-1e-4", "particles.diameter"},
+        Row{"zero_parcel_diameter", "", "{scene} --set particles.parcel_diameter=0", "particles.parcel_diameter"},
+        Row{"negative_density", "", "{scene} --set particles.density=-980", "particles.density"},
+        Row{"alpha_p_0_9", "", "{scene} --set particles.layer.volume_fraction=0.9", "particles.layer.volume_fraction"},
+        Row{"alpha_p_above", "", "{scene} --set particles.layer.volume_fraction=0.95", "particles.layer.volume_fraction"},
+        Row{"parcel_larger_than_cell", "", "{scene} --set particles.parcel_diameter=6e-4", "particles.parcel_diameter"},
+        Row{"zero_end_time", "", "{scene} --set run.end_time=0", "run.end_time"},
+        Row{"negative_end_time", "", "{scene} --set run.end_time=-1e-3", "run.end_time"},
+        Row{"negative_checkpoint_interval", "", "{scene} --set output.checkpoint_interval=-1", "output.checkpoint_interval"},
+        Row{"toml_syntax", "[run\nend_time = 1\n", "{scene}", "TOML syntax error"},
+        Row{"unknown_key", "", "{scene} --set run.speed=2", "run.speed"},
+        Row{"scene_is_a_folder", "", "{dir}", "is a folder"},
+        Row{"scene_in_missing_folder", "", "{dir}/no/such/scene.toml", "cannot open"},
+        Row{"output_under_a_file", "", "{scene} --out {scene}/out", "output folder"},
+        Row{"output_is_a_file", "", "{scene} --out {scene}", "output folder"},
+        Row{"scene_and_restart", "", "{scene} --restart {scene}", "either a scene file or --restart"},
+        Row{"restart_is_a_folder", "", "--restart {dir}", "is a folder"},
+        Row{"restart_missing", "", "--restart {dir}/none.h5", "cannot open"},
+        Row{"restart_foreign", "", "--restart {scene}", "not a dustlift checkpoint"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(BadInput, RestartRowsNeedingARealCheckpoint) {
+  const auto dir = fresh_dir("badin_restart");
+  write_file(dir / "scene.toml", kScene);
+  const CliResult made = run_cli("run " + (dir / "scene.toml").string() + " --out " + (dir / "first").string() +
+                                 " --threads 1 --set run.max_steps=2");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const fs::path checkpoint = dir / "first" / "checkpoint.h5";
+  ASSERT_TRUE(fs::exists(checkpoint));
+
+  // End time not after the checkpoint's time (the checkpoint was taken after 2 steps).
+  fs::path out = dir / "out_end";
+  CliResult r = run_cli("run --restart " + checkpoint.string() + " --out " + out.string() + " --set run.end_time=1e-12");
+  expect_bad_input(r, "run.end_time", out, "restart_end_before_checkpoint");
+
+  // Physics keys may not change on restart.
+  out = dir / "out_physics";
+  r = run_cli("run --restart " + checkpoint.string() + " --out " + out.string() + " --set grid.x.cells=16");
+  expect_bad_input(r, "grid.x.cells", out, "restart_changes_physics");
+
+  // A restart must not overwrite the outputs of the run it continues.
+  r = run_cli("run --restart " + checkpoint.string() + " --out " + (dir / "first").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("must not be the folder of its checkpoint"), std::string::npos) << r.output;
+
+  // Truncated copy.
+  std::string bytes;
+  {
+    std::ifstream in(checkpoint, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  write_file(dir / "truncated.h5", bytes.substr(0, bytes.size() / 2));
+  out = dir / "out_truncated";
+  r = run_cli("run --restart " + (dir / "truncated.h5").string() + " --out " + out.string());
+  expect_bad_input(r, "truncated", out, "restart_truncated");
+  fs::remove_all(dir);
+}
