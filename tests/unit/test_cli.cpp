@@ -127,3 +127,17 @@ TEST(Cli, UnwritableOutputFolderIsBadInput) {
   EXPECT_NE(r.output.find("output folder"), std::string::npos) << r.output;
   fs::remove_all(dir);
 }
+
+TEST(Cli, NumericalFailureExitsWithCode3NamingStepCellAndVariable) {
+  // A density ratio of 1e30 across the diaphragm is beyond what the scheme keeps positive:
+  // the run must stop with exit code 3 and say where and what, not crash or write NaNs on.
+  const auto dir = fresh_dir("blow_up");
+  const auto r = run_cli("run " + kSod + " --out " + dir.string() +
+                         " --set \"initial.left={ rho = 1.0, p = 1e6 }\" --set \"initial.right={ rho = 1e-30, p = 1e-30 }\"");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("numerical failure: step "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("gas cell (i, j) = ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("is not positive"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
