@@ -76,13 +76,16 @@ double xi2(double alpha_g, const VolumeFractionCorrection& c) {
   return (1.0 + 2.0 * phi) / (ag * ag * ag);
 }
 
+double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compressible,
+                        const VolumeFractionCorrection& c) {
+  const double re = g.rho * slip * d / g.mu;
+  const double re_cd = compressible ? re_cd_parmar(slip / g.c, re) : re_cd_standard(re);
+  return 3.0 * kPi * g.mu * d * re_cd / 24.0 * xi2(g.alpha_g, c);
+}
+
 Vec2 drag_force(const GasAtParcel& g, Vec2 up, double d, const VolumeFractionCorrection& c) {
   const Vec2 ur = g.u - up;
-  const double speed = ur.norm();
-  const double re = g.rho * speed * d / g.mu;
-  const double mach = speed / g.c;
-  // 3 pi mu d u_r (Re C_D / 24) xi_2: the Re C_D form stays finite at zero slip.
-  return ur * (3.0 * kPi * g.mu * d * re_cd_parmar(mach, re) / 24.0 * xi2(g.alpha_g, c));
+  return ur * drag_coefficient(g, ur.norm(), d, true, c);
 }
 
 double lun_liu_factor(double re) { return re <= 1.0 ? 1.0 : 0.178 + 0.822 * std::pow(re, -0.522); }

@@ -41,6 +41,12 @@ struct GasAtParcel {
   double alpha_g = 1.0;
 };
 
+/// Drag per unit slip speed of one real particle, beta in F_drag = beta u_r (Table 1):
+/// beta = 3 pi mu d (Re C_D / 24) xi_2(alpha_g), C_D with Parmar's xi_1(M, Re) when
+/// `compressible`, else the Clift-Gauvin curve; finite at zero slip (Stokes).
+double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compressible,
+                        const VolumeFractionCorrection& c);
+
 /// Drag on one real particle of diameter d moving with velocity up (Table 1):
 /// F = 3 pi mu d u_r (Re/24) C_D,std xi_1 xi_2, u_r = u_g - u_p.
 Vec2 drag_force(const GasAtParcel& g, Vec2 up, double d, const VolumeFractionCorrection& c);

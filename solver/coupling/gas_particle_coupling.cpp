@@ -32,13 +32,6 @@ ThermoAt thermo_at(const ThermoConfig& t, double T) {
   return {a.cp(T), std::sqrt(a.sound_speed_squared(T)), a.gamma(T)};
 }
 
-/// Drag per unit slip velocity of one real particle: 3 pi mu d (Re C_D / 24) xi_2 (Table 1).
-double drag_coefficient(double rho, double mu, double c, double alpha_g, double d, double slip,
-                        const CouplingConfig& cfg) {
-  const double re = rho * slip * d / mu;
-  const double re_cd = cfg.compressibility_correction ? aero::re_cd_parmar(slip / c, re) : aero::re_cd_standard(re);
-  return 3.0 * std::numbers::pi * mu * d * re_cd / 24.0 * aero::xi2(alpha_g, cfg.volume_fraction);
-}
 
 /// The particle models always need mu and lambda; an inviscid gas lends them the
 /// Gordon-Wilke air values (the gas itself stays inviscid).
@@ -184,7 +177,10 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
     const double d = dem_cfg_.particle_diameter;
     const double slip = std::hypot(s.u - parcels.vx[k], s.v - parcels.vy[k]);
     const double re = s.rho * slip * d / s.mu;
-    if (cfg_.drag) s.drag_coef = drag_coefficient(s.rho, s.mu, s.c, s.alpha_g, d, slip, cfg_);
+    if (cfg_.drag) {
+      const aero::GasAtParcel at{s.rho, {s.u, s.v}, s.mu, s.c, s.alpha_g};
+      s.drag_coef = aero::drag_coefficient(at, slip, d, cfg_.compressibility_correction, cfg_.volume_fraction);
+    }
     if (cfg_.magnus) {
       const double c_lm = cfg_.magnus_coefficient * (cfg_.lun_liu ? aero::lun_liu_factor(re) : 1.0);
       s.magnus_coef = c_lm * std::numbers::pi / 8.0 * s.rho * d * d * d;
