@@ -1,18 +1,53 @@
 #include "insitu/band_average.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace dustlift {
 
-void update_arrival_times(double shock_x, double time, std::span<const double> initial_x,
-                          std::span<double> arrival_time) {
-  if (initial_x.size() != arrival_time.size())
-    throw std::invalid_argument("update_arrival_times: size mismatch");
+void ShockTrajectory::record(double time, double shock_x) {
   if (std::isnan(shock_x)) return;
-  for (std::size_t k = 0; k < initial_x.size(); ++k)
-    if (std::isnan(arrival_time[k]) && initial_x[k] <= shock_x) arrival_time[k] = time;
+  if (!times_.empty() && time < times_.back()) throw std::invalid_argument("ShockTrajectory: time went back");
+  if (reaches_.empty() || shock_x > reaches_.back()) {
+    times_.push_back(time);
+    reaches_.push_back(shock_x);
+  }
+}
+
+double ShockTrajectory::arrival_time(double x0) const {
+  // First recorded reach >= x0 (reaches_ is increasing).
+  const auto it = std::lower_bound(reaches_.begin(), reaches_.end(), x0);
+  if (it == reaches_.end()) return std::numeric_limits<double>::quiet_NaN();
+  return times_[static_cast<std::size_t>(it - reaches_.begin())];
+}
+
+double ShockTrajectory::reach() const {
+  return reaches_.empty() ? std::numeric_limits<double>::quiet_NaN() : reaches_.back();
+}
+
+void ShockTrajectory::assign(std::vector<double> times, std::vector<double> reaches) {
+  if (times.size() != reaches.size()) throw std::invalid_argument("ShockTrajectory: sizes differ");
+  for (std::size_t k = 1; k < times.size(); ++k) {
+    if (!(times[k] >= times[k - 1]) || !(reaches[k] > reaches[k - 1]))
+      throw std::invalid_argument("ShockTrajectory: samples not in order");
+  }
+  times_ = std::move(times);
+  reaches_ = std::move(reaches);
+}
+
+void band_arrival_times(const ShockTrajectory& trajectory, const std::vector<Band>& bands,
+                        std::span<const double> initial_x, std::span<const double> initial_y,
+                        std::span<double> arrival_time) {
+  if (initial_x.size() != arrival_time.size() || initial_y.size() != arrival_time.size())
+    throw std::invalid_argument("band_arrival_times: size mismatch");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < initial_x.size(); ++k) {
+    bool in_band = false;
+    for (const Band& b : bands) in_band = in_band || b.contains(initial_x[k], initial_y[k]);
+    arrival_time[k] = in_band ? trajectory.arrival_time(initial_x[k]) : nan;
+  }
 }
 
 namespace {

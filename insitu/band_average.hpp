@@ -44,11 +44,33 @@ struct BandAverageOptions {
   double contact_window = 1e-5;   ///< s, window of the extra contact-force average
 };
 
-/// Sets arrival_time[k] = time for parcels not yet reached (NaN) whose initial x is at or
-/// behind the shock (initial_x <= shock_x). Call at every output or step with the shock
-/// position filter's result.
-void update_arrival_times(double shock_x, double time, std::span<const double> initial_x,
-                          std::span<double> arrival_time);
+/// When the shock reached each x: the sampled shock positions with their running maximum,
+/// so that the arrival time of a parcel is a function of its initial x alone (no per-parcel
+/// state to keep in the parcel order, which the DEM changes; and a short series a checkpoint
+/// can carry). arrival_time(x0) is the first sample time at which the shock stood at or
+/// beyond x0 (NaN if not yet), as a parcel-by-parcel check at every sample would find.
+class ShockTrajectory {
+ public:
+  /// Adds a sample; NaN positions (no shock found) are ignored. Times must not decrease.
+  void record(double time, double shock_x);
+  double arrival_time(double x0) const;
+  /// Farthest position reached (NaN before the first sample).
+  double reach() const;
+  /// Samples at which the reach grew: (time, reach) pairs in order.
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& reaches() const { return reaches_; }
+  /// Restores the pairs (a checkpoint); throws std::invalid_argument if they are not ordered.
+  void assign(std::vector<double> times, std::vector<double> reaches);
+
+ private:
+  std::vector<double> times_, reaches_;  ///< reaches_ strictly increasing
+};
+
+/// Fills arrival_time[k] = trajectory.arrival_time(initial_x[k]) for the parcels whose
+/// initial position lies in one of the bands (NaN for the others: they are not averaged).
+void band_arrival_times(const ShockTrajectory& trajectory, const std::vector<Band>& bands,
+                        std::span<const double> initial_x, std::span<const double> initial_y,
+                        std::span<double> arrival_time);
 
 class BandForceAccumulator {
  public:

@@ -52,10 +52,10 @@ struct BandForceOptions {
   bool sample_every_step = true;      ///< false: sample at outputs only
 };
 /// Band-averaged force histories (series forces_<band>): at every step (or output) finds
-/// the shock position from the pressure field, sets each parcel's arrival time when the
-/// shock first reaches its initial x, and bins the band's parcels by t - t_arrival.
-/// `parcels_of` supplies everything but arrival_time (the observer keeps that, indexed
-/// like the parcel arrays, whose count must not change during the run).
+/// the shock position from the pressure field and records it (ShockTrajectory); a band
+/// parcel's arrival time is when the shock first reached its initial x, and the band's
+/// parcels are binned by t - t_arrival. `parcels_of` supplies everything but arrival_time,
+/// in any parcel order (the DEM re-sorts its parcels).
 using BandParcelsOf = std::function<BandParcelsView(const StateView&)>;
 std::unique_ptr<Observer> make_band_force_observer(BandForceOptions options,
                                                    BandParcelsOf parcels_of);

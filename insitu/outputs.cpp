@@ -27,49 +27,24 @@ ParcelArraysView parcel_arrays_of(const StateView& v) {
   return a;
 }
 
-/// The band observer keeps per-parcel arrival times indexed like the arrays it is given, but
-/// the DEM re-sorts its parcels by cell; so the band view is a copy in parcel-id order.
-class BandArraysById {
- public:
-  BandParcelsView operator()(const StateView& v) {
-    const ParcelSystem& p = *v.parcels;
-    const std::size_t n = p.size();
-    for (auto* c : {&x0_, &y0_, &y_, &fcx_, &fcy_, &fdx_, &fdy_, &fmx_, &fmy_, &fpx_, &fpy_, &wp_})
-      c->resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto i = static_cast<std::size_t>(p.id[k]);
-      x0_[i] = p.x_initial[k];
-      y0_[i] = p.y_initial[k];
-      y_[i] = p.y[k];
-      fcx_[i] = p.contact_fx[k];
-      fcy_[i] = p.contact_fy[k];
-      fdx_[i] = p.drag_fx[k];
-      fdy_[i] = p.drag_fy[k];
-      fmx_[i] = p.magnus_fx[k];
-      fmy_[i] = p.magnus_fy[k];
-      fpx_[i] = p.pressure_fx[k];
-      fpy_[i] = p.pressure_fy[k];
-      wp_[i] = p.omega[k];
-    }
-    BandParcelsView b;
-    b.count = n;
-    b.initial_position = {x0_, y0_};
-    b.y = y_;
-    b.force_contact = {fcx_, fcy_};
-    b.force_drag = {fdx_, fdy_};
-    b.force_magnus = {fmx_, fmy_};
-    b.force_pressure = {fpx_, fpy_};
-    b.particle_rotation = wp_;
-    if (v.coupling != nullptr) {
-      b.relative_rotation = v.coupling->relative_rotation_by_id();
-      b.gas_rotation = v.coupling->gas_rotation_by_id();
-    }
-    return b;
+/// The band filter's view: the parcel table as it is (parcel order; no copy).
+BandParcelsView band_arrays_of(const StateView& v) {
+  const ParcelSystem& p = *v.parcels;
+  BandParcelsView b;
+  b.count = p.size();
+  b.initial_position = {p.x_initial, p.y_initial};
+  b.y = p.y;
+  b.force_contact = {p.contact_fx, p.contact_fy};
+  b.force_drag = {p.drag_fx, p.drag_fy};
+  b.force_magnus = {p.magnus_fx, p.magnus_fy};
+  b.force_pressure = {p.pressure_fx, p.pressure_fy};
+  b.particle_rotation = p.omega;
+  if (v.coupling != nullptr) {
+    b.relative_rotation = p.column(v.coupling->relative_rotation_column());
+    b.gas_rotation = p.column(v.coupling->gas_rotation_column());
   }
-
- private:
-  std::vector<double> x0_, y0_, y_, fcx_, fcy_, fdx_, fdy_, fmx_, fmy_, fpx_, fpy_, wp_;
-};
+  return b;
+}
 
 }  // namespace
 
@@ -116,7 +91,7 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
     bands.averaging.contact_window = out.contact_window;
     bands.shock = shock;
     bands.sample_every_step = true;
-    observers.push_back(make_band_force_observer(bands, BandArraysById{}));
+    observers.push_back(make_band_force_observer(bands, band_arrays_of));
   }
   return observers;
 }

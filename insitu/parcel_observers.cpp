@@ -62,10 +62,10 @@ class BandForceObserver final : public Observer {
                                           options_.shock.p_ambient, options_.shock.threshold,
                                           options_.shock.y_min);
     BandParcelsView parcels = parcels_of_(view);
-    if (arrival_.empty()) arrival_.assign(parcels.count, std::numeric_limits<double>::quiet_NaN());
-    if (arrival_.size() != parcels.count)
-      throw std::invalid_argument("BandForceObserver: the number of parcels changed");
-    update_arrival_times(shock_x, view.time, parcels.initial_position.x, arrival_);
+    trajectory_.record(view.time, shock_x);
+    arrival_.resize(parcels.count);
+    band_arrival_times(trajectory_, options_.bands, parcels.initial_position.x, parcels.initial_position.y,
+                       arrival_);
     parcels.arrival_time = arrival_;
     if (!series_)
       series_ = std::make_unique<BandForceSeries>(view.output_dir, options_.bands,
@@ -77,6 +77,7 @@ class BandForceObserver final : public Observer {
   BandForceOptions options_;
   BandParcelsOf parcels_of_;
   std::unique_ptr<BandForceSeries> series_;
+  ShockTrajectory trajectory_;
   std::vector<double> arrival_, pressure_, x_centers_, y_centers_;
   bool sampled_ = false;
   double last_time_ = 0.0;

@@ -222,6 +222,7 @@ int main(int argc, char** argv) {
     sim.run(out_dir);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(), sim.step(), wall));
+    log.line(sim.work_summary());
     return 0;
   } catch (const SceneError& e) {
     std::cerr << "dustlift: error: " << e.what() << "\n";

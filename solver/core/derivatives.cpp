@@ -26,8 +26,9 @@ double line_derivative(std::span<const double> c, const double* f, std::size_t s
   if (n == 2) return (f[stride] - f[0]) / (c[1] - c[0]);
   std::size_t first = k == 0 ? 0 : (k == n - 1 ? n - 3 : k - 1);  // one-sided at the ends
   const ThreePointWeights w = derivative_weights(c[first], c[first + 1], c[first + 2], c[k]);
-  return w.w0 * f[first * stride] + w.w1 * f[(first + 1) * stride] +
-         w.w2 * f[(first + 2) * stride];
+  // The weights sum to zero: written as differences, a uniform field gives exactly 0.
+  const double f1 = f[(first + 1) * stride];
+  return w.w0 * (f[first * stride] - f1) + w.w2 * (f[(first + 2) * stride] - f1);
 }
 
 }  // namespace
@@ -82,7 +83,9 @@ double axis_derivative(const Axis& a, int k, At at) {
   if (n == 2) return (at(1) - at(0)) / (a.center(1) - a.center(0));
   const int first = k == 0 ? 0 : (k == n - 1 ? n - 3 : k - 1);
   const ThreePointWeights w = derivative_weights(a.center(first), a.center(first + 1), a.center(first + 2), a.center(k));
-  return w.w0 * at(first) + w.w1 * at(first + 1) + w.w2 * at(first + 2);
+  // The weights sum to zero: written as differences, a uniform field gives exactly 0.
+  const double f1 = at(first + 1);
+  return w.w0 * (at(first) - f1) + w.w2 * (at(first + 2) - f1);
 }
 
 }  // namespace

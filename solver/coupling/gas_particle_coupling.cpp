@@ -8,7 +8,6 @@
 
 #include "solver/core/derivatives.hpp"
 #include "solver/core/errors.hpp"
-#include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/gas/thermo.hpp"
 #include "solver/gas/transport.hpp"
@@ -19,7 +18,7 @@ namespace {
 /// Below this many parcels a parallel region costs more than it saves.
 constexpr std::size_t kParallelParcels = 4096;
 
-/// cp(T) and c(T) of the configured thermodynamics.
+/// cp(T), c(T) and gamma(T) of the configured thermodynamics.
 struct ThermoAt {
   double cp, c, gamma;
 };
@@ -31,7 +30,6 @@ ThermoAt thermo_at(const ThermoConfig& t, double T) {
   const ThermallyPerfectAir a(t.gas_constant);
   return {a.cp(T), std::sqrt(a.sound_speed_squared(T)), a.gamma(T)};
 }
-
 
 /// The particle models always need mu and lambda; an inviscid gas lends them the
 /// Gordon-Wilke air values (the gas itself stays inviscid).
@@ -57,14 +55,20 @@ void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1) {
   }
 }
 
+/// Zeroes rows [0, rows) of the interior of f.
+void clear_rows(const Grid2D& g, Field2D& f, int rows) {
+  for (int j = 0; j < std::min(rows, g.ny()); ++j)
+    for (int i = 0; i < g.nx(); ++i) f(i, j) = 0.0;
+}
+
 }  // namespace
 
 GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfig& config,
                                          const GasConfig& gas, const DemConfig& dem)
     : grid_(grid), cfg_(config), gas_cfg_(gas), dem_cfg_(dem),
       particle_volume_(std::numbers::pi / 6.0 * std::pow(dem.particle_diameter, 3)),
-      alpha_p_(grid), src_x_(grid), src_y_(grid), src_e_(grid), cell_drag_(grid), cell_heat_(grid),
-      cell_mass_(grid), cell_heat_capacity_(grid) {
+      models_(build_coupling_models(config)), alpha_p_(grid), alpha_g_(grid, 1.0), src_x_(grid), src_y_(grid),
+      src_e_(grid), cell_drag_(grid), cell_heat_(grid), cell_mass_(grid), cell_heat_capacity_(grid) {
   if (needs_vorticity()) vorticity_ = Field2D(grid);
   if (cfg_.pressure_force) {
     dpdx_ = Field2D(grid);
@@ -78,31 +82,52 @@ void GasParticleCoupling::restore_carried_state(const CarriedState& s) {
   }
   alpha_p_.raw() = s.alpha_p;
   rows_touched_ = s.rows_touched;
+  stencil_dem_steps_ = -1;  // the parcels were replaced: make the stencils anew
 }
 
 bool GasParticleCoupling::needs_vorticity() const { return cfg_.magnus || cfg_.rotation_torque; }
 
+std::vector<std::string> GasParticleCoupling::model_descriptions() const {
+  std::vector<std::string> d;
+  for (const auto& m : models_) d.push_back(m->description());
+  return d;
+}
+
 void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j1) const {
   double ymin = grid_.y().end(), ymax = grid_.y().start();
-  for (std::size_t i = 0; i < parcels.size(); ++i) {
-    ymin = std::min(ymin, parcels.y[i]);
-    ymax = std::max(ymax, parcels.y[i]);
+  const std::size_t n = parcels.size();
+  const double* y = parcels.y.data();
+#pragma omp parallel for schedule(static) reduction(min : ymin) reduction(max : ymax) if (n >= kParallelParcels)
+  for (std::size_t i = 0; i < n; ++i) {
+    ymin = std::min(ymin, y[i]);
+    ymax = std::max(ymax, y[i]);
   }
   // Two rows of margin: the interpolation quad and the 3-point derivative stencils.
   j0 = std::max(0, grid_.y().locate(ymin) - 2);
   j1 = std::min(grid_.ny(), grid_.y().locate(ymax) + 3);
 }
 
+void GasParticleCoupling::update_stencils(const ParcelSystem& parcels) {
+  if (stencil_dem_steps_ == parcels.steps() && stencils_.size() == parcels.size()) return;
+  const std::size_t n = parcels.size();
+  stencils_.resize(n);
+  const double w = cfg_.influence_width;
+#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
+  for (std::size_t k = 0; k < n; ++k) stencils_[k] = deposit_stencil(grid_, parcels.x[k], parcels.y[k], w);
+  stencil_dem_steps_ = parcels.steps();
+}
+
 void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
   int j0 = 0, j1 = 0;
   row_range(parcels, j0, j1);
   const int clear_to = std::max(rows_touched_, j1);
-  for (int j = 0; j < clear_to; ++j)
-    for (int i = 0; i < grid_.nx(); ++i) alpha_p_(i, j) = 0.0;
+  clear_rows(grid_, alpha_p_, clear_to);
   rows_touched_ = j1;
+  cleared_to_ = clear_to;
+  update_stencils(parcels);
   // Serial in parcel order: the order is thread-independent, so the sums are too.
   for (std::size_t k = 0; k < parcels.size(); ++k) {
-    const DepositStencil d = deposit_stencil(grid_, parcels.x[k], parcels.y[k], cfg_.influence_width);
+    const DepositStencil& d = stencils_[k];
     const double volume = parcels.n_real[k] * particle_volume_;  // eq. (12), per metre of depth
     for (int m = 0; m < d.count; ++m) {
       const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
@@ -113,36 +138,55 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
 }
 
 void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
-  const std::size_t n = parcels.size();
-  std::int32_t max_id = -1;
-  for (std::size_t k = 0; k < n; ++k) max_id = std::max(max_id, parcels.id[k]);
-  const auto by_id = static_cast<std::size_t>(max_id + 1);
-  samples_.assign(by_id, Sample{});
-  for (auto* v : {&impulse_x_, &impulse_y_, &work_, &heat_, &force_x_prev_, &force_y_prev_, &vx_prev_,
-                  &vy_prev_, &gas_rotation_, &relative_rotation_, &sampled_p_}) {
-    v->assign(by_id, 0.0);
-  }
-  parcels.external_forces = cfg_.drag || cfg_.magnus || cfg_.pressure_force || cfg_.rotation_torque;
-  parcels.integrate_temperature = cfg_.heat_transfer;
+  auto attach = [&](const char* name, const char* unit) { return parcels.attach_column({name, unit, false, false}); };
+  col_.gas_u = attach("gas_u", "m/s");
+  col_.gas_v = attach("gas_v", "m/s");
+  col_.gas_rotation = attach("gas_rotation", "rad/s");
+  col_.gas_T = attach("gas_temperature", "K");
+  col_.gas_p = attach("gas_pressure", "Pa");
+  col_.drag = attach("drag_coefficient", "N s/m");
+  col_.magnus = attach("magnus_coefficient", "N s^2/m^2");
+  col_.torque = attach("torque_coefficient", "N m s");
+  col_.heat_coef = attach("heat_coefficient", "W/K");
+  col_.impulse_x = attach("exchange_impulse_x", "N s");
+  col_.impulse_y = attach("exchange_impulse_y", "N s");
+  col_.work = attach("exchange_work", "J");
+  col_.heat = attach("exchange_heat", "J");
+  col_.relative_rotation = attach("relative_rotation", "rad/s");
+  forcing_.drag = cfg_.drag;
+  forcing_.magnus = cfg_.magnus;
+  forcing_.pressure = cfg_.pressure_force;
+  forcing_.torque = cfg_.rotation_torque;
+  forcing_.heat = cfg_.heat_transfer;
+  forcing_.magnus_sign = cfg_.magnus_convention == aero::MagnusConvention::Standard ? 1.0 : -1.0;
+  forcing_.gas_u = col_.gas_u;
+  forcing_.gas_v = col_.gas_v;
+  forcing_.gas_rotation = col_.gas_rotation;
+  forcing_.gas_temperature = col_.gas_T;
+  forcing_.drag_coefficient = col_.drag;
+  forcing_.magnus_coefficient = col_.magnus;
+  forcing_.torque_coefficient = col_.torque;
+  forcing_.heat_coefficient = col_.heat_coef;
+  forcing_.impulse_x = col_.impulse_x;
+  forcing_.impulse_y = col_.impulse_y;
+  forcing_.work = col_.work;
+  forcing_.heat_in = col_.heat;
+  forcing_.relative_rotation = col_.relative_rotation;
+  parcels.set_gas_forcing(forcing_);
+  parcels.store_parts_on_last_substep_only(true);
+  parcels.build_neighbours_if_due();
 
   deposit_alpha(parcels);
   if (!cfg_.two_way) return;
-  Field2D& alpha = gas.porosity();
-  for (int j = 0; j < grid_.ny(); ++j) {
-    for (int i = 0; i < grid_.nx(); ++i) {
-      const double a = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
-      const double scale = a / alpha(i, j);
-      for (int k = 0; k < 4; ++k) gas.conserved(k)(i, j) *= scale;
-      alpha(i, j) = a;
-    }
-  }
-  gas.refresh_primitives();
+  for (int j = 0; j < grid_.ny(); ++j)
+    for (int i = 0; i < grid_.nx(); ++i) alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
+  gas.initialize_porosity(alpha_g_);
 }
 
-void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& parcels, double dt) {
+void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   const GasPrimitives g = gas.primitives();
   int j0 = 0, j1 = 0;
-  row_range(parcels, j0, j1);
+  row_range(ps, j0, j1);
   if (needs_vorticity()) {
     vorticity_z_rows(grid_, *g.u, *g.v, j0, j1, vorticity_);
     copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
@@ -152,11 +196,26 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
     copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
     copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
   }
-  const std::size_t n = parcels.size();
+  const std::size_t n = ps.size();
+  double* gu = ps.column(col_.gas_u).data();
+  double* gv = ps.column(col_.gas_v).data();
+  double* grot = ps.column(col_.gas_rotation).data();
+  double* gT = ps.column(col_.gas_T).data();
+  double* gp = ps.column(col_.gas_p).data();
+  double* K = ps.column(col_.drag).data();
+  double* M = ps.column(col_.magnus).data();
+  double* kappa = ps.column(col_.torque).data();
+  double* H = ps.column(col_.heat_coef).data();
+  double* jx = ps.column(col_.impulse_x).data();
+  double* jy = ps.column(col_.impulse_y).data();
+  double* work = ps.column(col_.work).data();
+  double* heat = ps.column(col_.heat).data();
+  const double d = dem_cfg_.particle_diameter;
+  const bool vort = needs_vorticity();
 #pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
-    const InterpolationStencil st = interpolation_stencil(grid_, parcels.x[k], parcels.y[k], cfg_.interpolation);
-    Sample s{};
+    const InterpolationStencil st = interpolation_stencil(grid_, ps.x[k], ps.y[k], cfg_.interpolation);
+    GasSample s;
     s.rho = st.apply(*g.rho);
     s.u = st.apply(*g.u);
     s.v = st.apply(*g.v);
@@ -169,71 +228,57 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, const ParcelSystem& p
     s.c = th.c;
     s.cp = th.cp;
     s.alpha_g = 1.0 - std::min(st.apply(alpha_p_), cfg_.max_volume_fraction);
-    s.vorticity = needs_vorticity() ? st.apply(vorticity_) : 0.0;
+    s.vorticity = vort ? st.apply(vorticity_) : 0.0;
     s.dpdx = cfg_.pressure_force ? st.apply(dpdx_) : 0.0;
     s.dpdy = cfg_.pressure_force ? st.apply(dpdy_) : 0.0;
-    // Model coefficients for this CFD step, at the parcel's current slip and spin (Table 1);
-    // the sub-steps apply them to the current slip, spin and temperature.
-    const double d = dem_cfg_.particle_diameter;
-    const double slip = std::hypot(s.u - parcels.vx[k], s.v - parcels.vy[k]);
+    const ParcelAtSample pa{ps.vx[k], ps.vy[k], ps.omega[k], d};
+    const double slip = std::hypot(s.u - pa.vx, s.v - pa.vy);
     const double re = s.rho * slip * d / s.mu;
-    if (cfg_.drag) {
-      const aero::GasAtParcel at{s.rho, {s.u, s.v}, s.mu, s.c, s.alpha_g};
-      s.drag_coef = aero::drag_coefficient(at, slip, d, cfg_.compressibility_correction, cfg_.volume_fraction);
-    }
-    if (cfg_.magnus) {
-      const double c_lm = cfg_.magnus_coefficient * (cfg_.lun_liu ? aero::lun_liu_factor(re) : 1.0);
-      s.magnus_coef = c_lm * std::numbers::pi / 8.0 * s.rho * d * d * d;
-    }
-    if (cfg_.pressure_force) {
-      const Vec2 f = aero::pressure_force(d, {s.dpdx, s.dpdy});
-      s.pressure_fx = f.x;
-      s.pressure_fy = f.y;
-    }
-    if (cfg_.rotation_torque) {
-      // M = kappa w_rel with kappa = M(w_rel0) / w_rel0 (Dennis et al. torque is odd in w_rel).
-      const double w0 = aero::relative_rotation(s.vorticity, parcels.omega[k]);
-      s.torque_coef = w0 != 0.0 ? aero::rotation_torque(s.rho, s.mu, d, w0, cfg_.torque_stokes_below) / w0
-                                : std::numbers::pi * s.mu * d * d * d;  // Stokes slope at w_rel -> 0
-    }
-    if (cfg_.heat_transfer) {
-      s.heat_coef = std::numbers::pi * d * s.lambda * aero::nusselt_ranz_marshall(re, s.mu * s.cp / s.lambda);
-    }
-    const auto id = static_cast<std::size_t>(parcels.id[k]);
-    samples_[id] = s;
-    sampled_p_[id] = s.p;
-    gas_rotation_[id] = 0.5 * s.vorticity;
-    impulse_x_[id] = impulse_y_[id] = work_[id] = heat_[id] = 0.0;
+    SubstepCoefficients c;
+    for (const auto& m : models_) m->coefficients(s, pa, slip, re, c);
+    gu[k] = s.u;
+    gv[k] = s.v;
+    grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
+    gT[k] = s.T;
+    gp[k] = s.p;
+    K[k] = c.drag;
+    M[k] = c.magnus;
+    kappa[k] = c.torque;
+    H[k] = c.heat;
+    ps.pressure_fx[k] = c.pressure_fx;
+    ps.pressure_fy[k] = c.pressure_fy;
+    jx[k] = jy[k] = work[k] = heat[k] = 0.0;
   }
-  if (cfg_.two_way) stiff_exchange_relief(gas, parcels, dt);
 }
 
-void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const ParcelSystem& ps, double dt) {
+void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSystem& ps, double dt) {
   int j0 = 0, j1 = 0;
   row_range(ps, j0, j1);
-  for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) {
-    for (int j = 0; j < j1; ++j)
-      for (int i = 0; i < grid_.nx(); ++i) (*f)(i, j) = 0.0;
-  }
+  for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) clear_rows(grid_, *f, j1);
+  update_stencils(ps);
+  double* K = ps.column(col_.drag).data();
+  double* H = ps.column(col_.heat_coef).data();
   // Per-cell sums over the parcels, in parcel order (thread-independent).
+  const double c_p = dem_cfg_.heat_capacity;
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const Sample& s = samples_[static_cast<std::size_t>(ps.id[k])];
-    const double kd = ps.n_real[k] * s.drag_coef;
-    const double kh = ps.n_real[k] * s.heat_coef;
-    const DepositStencil st = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
+    const double kd = ps.n_real[k] * K[k];
+    const double kh = ps.n_real[k] * H[k];
+    const DepositStencil& st = stencils_[k];
     for (int m = 0; m < st.count; ++m) {
       const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
       const double f = st.fraction[static_cast<std::size_t>(m)];
       cell_drag_(i, j) += f * kd;
       cell_heat_(i, j) += f * kh;
       cell_mass_(i, j) += f * ps.mass[k];
-      cell_heat_capacity_(i, j) += f * ps.mass[k] * dem_cfg_.heat_capacity;
+      cell_heat_capacity_(i, j) += f * ps.mass[k] * c_p;
     }
   }
   const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
   const GasPrimitives g = gas.primitives();
+  const int nx = grid_.nx();
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(j1) * nx >= kParallelParcels)
   for (int j = 0; j < j1; ++j) {
-    for (int i = 0; i < grid_.nx(); ++i) {
+    for (int i = 0; i < nx; ++i) {
       if (cell_mass_(i, j) == 0.0) continue;
       const double m_gas = gas_mass_density(i, j) * grid_.area(i, j);
       const ThermoAt th = thermo_at(gas_cfg_.thermo, (*g.T)(i, j));
@@ -243,9 +288,10 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const Parc
           1.0 / (1.0 + dt * cell_heat_(i, j) * (1.0 / (m_gas * cv_gas) + 1.0 / cell_heat_capacity_(i, j)));
     }
   }
-  for (std::size_t k = 0; k < ps.size(); ++k) {
-    Sample& s = samples_[static_cast<std::size_t>(ps.id[k])];
-    const DepositStencil st = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
+  const std::size_t n = ps.size();
+#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
+  for (std::size_t k = 0; k < n; ++k) {
+    const DepositStencil& st = stencils_[k];
     double drag_relief = 0.0, heat_relief = 0.0;
     for (int m = 0; m < st.count; ++m) {
       const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
@@ -253,150 +299,103 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, const Parc
       drag_relief += f * cell_drag_(i, j);
       heat_relief += f * cell_heat_(i, j);
     }
-    s.drag_coef *= drag_relief;
-    s.heat_coef *= heat_relief;
-  }
-}
-
-void GasParticleCoupling::substep_forces(ParcelSystem& ps, double dt_sub, bool first) {
-  // Cheap per sub-step: the coefficients were evaluated once per CFD step (sample_gas); here
-  // they act on the parcel's current slip, spin and temperature.
-  const std::size_t n = ps.size();
-  const auto& c = cfg_;
-  const double magnus_sign = c.magnus_convention == aero::MagnusConvention::Standard ? 1.0 : -1.0;
-#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto id = static_cast<std::size_t>(ps.id[k]);
-    const Sample& s = samples_[id];
-    // Work of the previous sub-step's exchange force over that sub-step: F . (v^n + v^{n+1})/2,
-    // which is exactly the kinetic energy symplectic Euler gave the parcel for it.
-    if (!first) {
-      work_[id] += (force_x_prev_[id] * 0.5 * (vx_prev_[id] + ps.vx[k]) +
-                    force_y_prev_[id] * 0.5 * (vy_prev_[id] + ps.vy[k])) * dt_sub_prev_;
-    }
-    const Vec2 ur{s.u - ps.vx[k], s.v - ps.vy[k]};
-    const double w_rel = aero::relative_rotation(s.vorticity, ps.omega[k]);
-    relative_rotation_[id] = w_rel;
-    const Vec2 drag = ur * s.drag_coef;
-    const Vec2 magnus = cross(magnus_sign * s.magnus_coef * w_rel, ur);  // Table 1, see aero::magnus_force
-    ps.drag_fx[k] = drag.x;
-    ps.drag_fy[k] = drag.y;
-    ps.magnus_fx[k] = magnus.x;
-    ps.magnus_fy[k] = magnus.y;
-    ps.pressure_fx[k] = s.pressure_fx;
-    ps.pressure_fy[k] = s.pressure_fy;
-    ps.fluid_torque[k] = s.torque_coef * w_rel;
-    const double q = s.heat_coef * (s.T - ps.temperature[k]);
-    if (c.heat_transfer) ps.heat_rate[k] = q;
-    // Exchange terms (eqs. 13-15): drag + Magnus momentum and heat, per real particle.
-    const Vec2 exchange = drag + magnus;
-    impulse_x_[id] += exchange.x * dt_sub;
-    impulse_y_[id] += exchange.y * dt_sub;
-    heat_[id] += q * dt_sub;
-    force_x_prev_[id] = exchange.x;
-    force_y_prev_[id] = exchange.y;
-    vx_prev_[id] = ps.vx[k];
-    vy_prev_[id] = ps.vy[k];
-  }
-  dt_sub_prev_ = dt_sub;
-}
-
-void GasParticleCoupling::finish_work(const ParcelSystem& ps) {
-  const std::size_t n = ps.size();
-#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto id = static_cast<std::size_t>(ps.id[k]);
-    work_[id] += (force_x_prev_[id] * 0.5 * (vx_prev_[id] + ps.vx[k]) +
-                  force_y_prev_[id] * 0.5 * (vy_prev_[id] + ps.vy[k])) * dt_sub_prev_;
+    K[k] *= drag_relief;
+    H[k] *= heat_relief;
   }
 }
 
 void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
-  for (std::size_t k = 0; k < ps.size(); ++k) {
-    const char* bad = nullptr;
-    if (!std::isfinite(ps.x[k]) || !std::isfinite(ps.y[k])) bad = "position";
-    else if (!std::isfinite(ps.vx[k]) || !std::isfinite(ps.vy[k])) bad = "velocity";
-    else if (!std::isfinite(ps.omega[k])) bad = "angular velocity";
-    else if (!(ps.temperature[k] > 0.0) || !std::isfinite(ps.temperature[k])) bad = "temperature";
-    if (bad != nullptr) {
-      std::ostringstream m;
-      m << "parcel id " << ps.id[k] << ": " << bad << " not finite (x = " << ps.x[k] << " m, y = " << ps.y[k]
-        << " m, vx = " << ps.vx[k] << " m/s, vy = " << ps.vy[k] << " m/s, T = " << ps.temperature[k] << " K)";
-      throw NumericalFailure(m.str());
-    }
+  const std::size_t n = ps.size();
+  std::size_t first_bad = n;
+#pragma omp parallel for schedule(static) reduction(min : first_bad) if (n >= kParallelParcels)
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool ok = std::isfinite(ps.x[k]) && std::isfinite(ps.y[k]) && std::isfinite(ps.vx[k]) &&
+                    std::isfinite(ps.vy[k]) && std::isfinite(ps.omega[k]) && ps.temperature[k] > 0.0 &&
+                    std::isfinite(ps.temperature[k]);
+    if (!ok) first_bad = std::min(first_bad, k);
   }
+  if (first_bad == n) return;
+  const std::size_t k = first_bad;
+  const char* bad = !std::isfinite(ps.x[k]) || !std::isfinite(ps.y[k])    ? "position"
+                    : !std::isfinite(ps.vx[k]) || !std::isfinite(ps.vy[k]) ? "velocity"
+                    : !std::isfinite(ps.omega[k])                          ? "angular velocity"
+                                                                           : "temperature";
+  std::ostringstream m;
+  m << "parcel id " << ps.id[k] << ": " << bad << " not finite (x = " << ps.x[k] << " m, y = " << ps.y[k]
+    << " m, vx = " << ps.vx[k] << " m/s, vy = " << ps.vy[k] << " m/s, T = " << ps.temperature[k] << " K)";
+  throw NumericalFailure(m.str());
 }
 
 void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt) {
-  deposit_alpha(ps);
+  deposit_alpha(ps);  // also makes the stencils at the new positions
   const int substeps = exchange_.substeps;
   exchange_ = ExchangeTotals{};
   exchange_.substeps = substeps;
+  const double* jx = ps.column(col_.impulse_x).data();
+  const double* jy = ps.column(col_.impulse_y).data();
+  const double* work = ps.column(col_.work).data();
+  const double* heat = ps.column(col_.heat).data();
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const auto id = static_cast<std::size_t>(ps.id[k]);
     const double nr = ps.n_real[k];
-    exchange_.parcel_impulse_x += nr * impulse_x_[id];
-    exchange_.parcel_impulse_y += nr * impulse_y_[id];
-    exchange_.parcel_work += nr * work_[id];
-    exchange_.parcel_heat += nr * heat_[id];
+    exchange_.parcel_impulse_x += nr * jx[k];
+    exchange_.parcel_impulse_y += nr * jy[k];
+    exchange_.parcel_work += nr * work[k];
+    exchange_.parcel_heat += nr * heat[k];
   }
   if (!cfg_.two_way) return;
-  src_x_.fill(0.0);
-  src_y_.fill(0.0);
-  src_e_.fill(0.0);
+  clear_rows(grid_, src_x_, rows_touched_);
+  clear_rows(grid_, src_y_, rows_touched_);
+  clear_rows(grid_, src_e_, rows_touched_);
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const auto id = static_cast<std::size_t>(ps.id[k]);
-    const DepositStencil d = deposit_stencil(grid_, ps.x[k], ps.y[k], cfg_.influence_width);
+    const double energy = work[k] + heat[k];
+    // A parcel that exchanged nothing adds nothing (skipping it keeps -0 out of the sums).
+    if (jx[k] == 0.0 && jy[k] == 0.0 && energy == 0.0) continue;
+    const DepositStencil& d = stencils_[k];
     const double nr = ps.n_real[k];
     for (int m = 0; m < d.count; ++m) {
       const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
       const double w = d.fraction[static_cast<std::size_t>(m)] * nr / (grid_.area(i, j) * dt);
-      src_x_(i, j) += w * impulse_x_[id];
-      src_y_(i, j) += w * impulse_y_[id];
-      src_e_(i, j) += w * (work_[id] + heat_[id]);
+      src_x_(i, j) += w * jx[k];
+      src_y_(i, j) += w * jy[k];
+      src_e_(i, j) += w * energy;
     }
   }
-  // Porosity update with the p d(alpha_g)/dt work of eq. (3): alpha_g rho and alpha_g rho u
-  // are unchanged; the gas is compressed or expanded isentropically by the volume the
-  // particles took or gave back. To first order this is exactly -p d(alpha_g); unlike the
-  // linear form it cannot drive the internal energy negative when alpha_g changes by a
-  // large fraction in one step.
-  Field2D& alpha = gas.porosity();
-  const Field2D& temperature = *gas.primitives().T;
-  const Field2D& mass = gas.conserved(0);
-  const Field2D& mom_x = gas.conserved(1);
-  const Field2D& mom_y = gas.conserved(2);
-  Field2D& energy = gas.conserved(3);
-  Field2D* sources[3] = {&gas.source(1), &gas.source(2), &gas.source(3)};
-  for (int j = 0; j < grid_.ny(); ++j) {
+  const int rows = rows_touched_;
+  Field2D& sx = gas.source(1);
+  Field2D& sy = gas.source(2);
+  Field2D& se = gas.source(3);
+  // Rows [rows, cleared) held parcels before and none now: their sources go back to zero;
+  // rows above them never held any.
+  for (int j = 0; j < cleared_to_; ++j) {
     for (int i = 0; i < grid_.nx(); ++i) {
-      const double a_new = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
-      const double a_old = alpha(i, j);
-      if (a_new != a_old) {
-        const double kinetic = 0.5 * (mom_x(i, j) * mom_x(i, j) + mom_y(i, j) * mom_y(i, j)) / mass(i, j);
-        const double gamma = thermo_at(gas_cfg_.thermo, temperature(i, j)).gamma;
-        energy(i, j) = kinetic + (energy(i, j) - kinetic) * std::pow(a_old / a_new, gamma - 1.0);
-        alpha(i, j) = a_new;
+      alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
+      if (j >= rows) {
+        sx(i, j) = sy(i, j) = se(i, j) = 0.0;
+        continue;
       }
-      (*sources[0])(i, j) = -src_x_(i, j);
-      (*sources[1])(i, j) = -src_y_(i, j);
-      (*sources[2])(i, j) = -src_e_(i, j);
+      sx(i, j) = -src_x_(i, j);
+      sy(i, j) = -src_y_(i, j);
+      se(i, j) = -src_e_(i, j);
       const double area_dt = grid_.area(i, j) * dt;
       exchange_.gas_impulse_x += src_x_(i, j) * area_dt;
       exchange_.gas_impulse_y += src_y_(i, j) * area_dt;
       exchange_.gas_energy += src_e_(i, j) * area_dt;
     }
   }
-  gas.refresh_primitives();
+  gas.change_porosity(alpha_g_, 0, cleared_to_);
 }
 
 void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double dt) {
-  sample_gas(gas, parcels, dt);
-  int substep = 0;
-  const int n = parcels.substeps_for(dt);
-  const double dt_sub = dt / n;
-  exchange_.substeps = parcels.advance(dt, [&](ParcelSystem& ps, double) { substep_forces(ps, dt_sub, substep++ == 0); });
-  finish_work(parcels);
+  {
+    const ScopedTimer t(timings_.sample);
+    sample_gas(gas, parcels);
+  }
+  if (cfg_.two_way) {
+    const ScopedTimer t(timings_.relief);
+    stiff_exchange_relief(gas, parcels, dt);
+  }
+  exchange_.substeps = parcels.advance(dt);
+  const ScopedTimer t(timings_.deposit);
   check_parcels(parcels);
   deposit_exchange(gas, parcels, dt);
 }

@@ -21,9 +21,12 @@ namespace dustlift {
 struct InterpolationStencil {
   int i = 0, j = 0;
   std::array<double, 4> weight{};
+  /// The interpolated value; a uniform stencil gives its value exactly (weighted sums of
+  /// equal values can be off in the last bit, and a gas at rest must look exactly at rest).
   double apply(const Field2D& f) const {
-    return weight[0] * f(i, j) + weight[1] * f(i + 1, j) + weight[2] * f(i, j + 1) +
-           weight[3] * f(i + 1, j + 1);
+    const double a = f(i, j), b = f(i + 1, j), c = f(i, j + 1), d = f(i + 1, j + 1);
+    if (a == b && a == c && a == d) return a;
+    return weight[0] * a + weight[1] * b + weight[2] * c + weight[3] * d;
   }
 };
 

@@ -67,6 +67,9 @@ struct DemConfig {
   double courant = 0.1;                  ///< nu_DEM of eq. (18): dt = nu sqrt(m / max(k_n, k_t))
   double gravity_x = 0.0, gravity_y = 0.0;  ///< m/s^2; the paper has no gravity (eq. 5)
   double skin = 0.1;                     ///< neighbour-list skin, in parcel diameters
+  /// A fast parcel's skin covers this many sub-steps at its speed (at least skin / 2), so
+  /// the few fast parcels do not force frequent rebuilds of every parcel's list.
+  double fast_skin_substeps = 50.0;
 };
 
 }  // namespace dustlift

@@ -1,6 +1,8 @@
 // One DEM step: gather contact forces (Table 1), then symplectic Euler (paper Sect. 2.3).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 #include "solver/dem/contact_law.hpp"
 #include "solver/dem/parcel_system.hpp"
@@ -12,10 +14,19 @@ double ParcelSystem::wall_position(int w) const {
   return w == 0 ? d.y_min : w == 1 ? d.y_max : w == 2 ? d.x_min : d.x_max;
 }
 
-void ParcelSystem::step(double dt) {
-  if (needs_rebuild_) rebuild_neighbours();
-  compute_contacts(dt);
-  integrate(dt);
+void ParcelSystem::step(double dt) { step_with_parts(dt, true); }
+
+void ParcelSystem::step_with_parts(double dt, bool store_parts) {
+  if (needs_rebuild_) {
+    const ScopedTimer t(timings_.rebuild);
+    rebuild_neighbours();
+  }
+  {
+    const ScopedTimer t(timings_.contacts);
+    compute_contacts(dt);
+  }
+  const ScopedTimer t(timings_.integrate);
+  integrate(dt, store_parts);
   time_ += dt;
   ++steps_;
 }
@@ -116,34 +127,46 @@ void ParcelSystem::compute_contacts(double dt) {
 
 namespace {
 
-/// Arrays one integration pass reads and writes.
-struct IntegrateArrays {
-  double* __restrict x;
-  double* __restrict y;
-  double* __restrict vx;
-  double* __restrict vy;
-  double* __restrict omega;
-  double* __restrict temperature;
-  const double* __restrict inv_m;
-  const double* __restrict inv_I;
-  const double* __restrict fx;
-  const double* __restrict fy;
-  const double* __restrict torque;
-  const double* __restrict ext_fx;  ///< sum of drag, Magnus, pressure (External only)
-  const double* __restrict ext_fy;
-  const double* __restrict ext_torque;
-  const double* __restrict heat;
-  const double* __restrict x_build;
-  const double* __restrict y_build;
+/// Symplectic Euler of the parcels under contacts (and gravity) alone; returns the largest
+/// squared displacement since the last neighbour build in units of the parcel's own skin
+/// (is2 = 1 / skin^2): above 1 the list must be rebuilt. Branch-free: it vectorises.
+double integrate_plain(double* __restrict px, double* __restrict py, double* __restrict pvx, double* __restrict pvy,
+                       double* __restrict pw, const double* __restrict im, const double* __restrict ii,
+                       const double* __restrict cfx, const double* __restrict cfy, const double* __restrict ctq,
+                       const double* __restrict xb, const double* __restrict yb, const double* __restrict is2,
+                       std::size_t n, double dt, double gx, double gy) {
+  double max_d2 = 0.0;
+#pragma omp parallel for simd schedule(static) reduction(max : max_d2) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double vxn = pvx[i] + dt * (cfx[i] * im[i] + gx);
+    const double vyn = pvy[i] + dt * (cfy[i] * im[i] + gy);
+    pvx[i] = vxn;
+    pvy[i] = vyn;
+    const double xn = px[i] + dt * vxn, yn = py[i] + dt * vyn;
+    px[i] = xn;
+    py[i] = yn;
+    pw[i] += dt * ctq[i] * ii[i];
+    const double ddx = xn - xb[i], ddy = yn - yb[i];
+    max_d2 = std::max(max_d2, (ddx * ddx + ddy * ddy) * is2[i]);
+  }
+  return max_d2;
+}
+
+/// Arrays of the forced integration (ParcelSystem columns, resolved for one sub-step).
+struct ForcedArrays {
+  double *x, *y, *vx, *vy, *omega, *temperature;
+  const double *inv_m, *inv_I, *contact_fx, *contact_fy, *contact_torque, *x_build, *y_build, *inv_skin2;
+  const double *gas_u, *gas_v, *gas_rotation, *gas_T, *K, *M, *kappa, *H, *pressure_fx, *pressure_fy;
+  double *impulse_x, *impulse_y, *work, *heat;
+  double *drag_fx, *drag_fy, *magnus_fx, *magnus_fy, *fluid_torque, *heat_rate, *relative_rotation;
 };
 
-/// Symplectic Euler for all parcels; returns the largest squared displacement since the
-/// last neighbour build. The plain variant (DEM alone) has no branch and vectorises.
-template <bool External, bool Thermal>
-double integrate_kernel(const IntegrateArrays& a, std::size_t n, double dt, double gx, double gy,
-                        double inv_c) {
-  // Local restrict copies: through the struct the compiler would assume the stores may
-  // change the pointers themselves, and would not vectorise.
+/// Symplectic Euler under contacts and the frozen-gas forcing (GasForcing); the effects that
+/// are off are compiled out. Store: write the force parts for the observers.
+template <bool Drag, bool Magnus, bool Pressure, bool Torque, bool Heat, bool Store>
+double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, double gx, double gy, double inv_c,
+                               double magnus_sign) {
+  // Local restrict copies (through the struct the compiler would assume aliasing).
   double* __restrict px = a.x;
   double* __restrict py = a.y;
   double* __restrict pvx = a.vx;
@@ -152,68 +175,167 @@ double integrate_kernel(const IntegrateArrays& a, std::size_t n, double dt, doub
   double* __restrict pT = a.temperature;
   const double* __restrict im = a.inv_m;
   const double* __restrict ii = a.inv_I;
-  const double* __restrict cfx = a.fx;
-  const double* __restrict cfy = a.fy;
-  const double* __restrict ctq = a.torque;
-  const double* __restrict efx = a.ext_fx;
-  const double* __restrict efy = a.ext_fy;
-  const double* __restrict etq = a.ext_torque;
-  const double* __restrict heat = a.heat;
+  const double* __restrict cfx = a.contact_fx;
+  const double* __restrict cfy = a.contact_fy;
+  const double* __restrict ctq = a.contact_torque;
   const double* __restrict xb = a.x_build;
   const double* __restrict yb = a.y_build;
+  const double* __restrict is2 = a.inv_skin2;
+  const double* __restrict gu = a.gas_u;
+  const double* __restrict gv = a.gas_v;
+  const double* __restrict grot = a.gas_rotation;
+  const double* __restrict gT = a.gas_T;
+  const double* __restrict K = a.K;
+  const double* __restrict M = a.M;
+  const double* __restrict kap = a.kappa;
+  const double* __restrict H = a.H;
+  const double* __restrict pfx = a.pressure_fx;
+  const double* __restrict pfy = a.pressure_fy;
+  double* __restrict jx = a.impulse_x;
+  double* __restrict jy = a.impulse_y;
+  double* __restrict work = a.work;
+  double* __restrict heat = a.heat;
+  double* __restrict out_dfx = a.drag_fx;
+  double* __restrict out_dfy = a.drag_fy;
+  double* __restrict out_mfx = a.magnus_fx;
+  double* __restrict out_mfy = a.magnus_fy;
+  double* __restrict out_tq = a.fluid_torque;
+  double* __restrict out_q = a.heat_rate;
+  double* __restrict out_wr = a.relative_rotation;
   double max_d2 = 0.0;
 #pragma omp parallel for simd schedule(static) reduction(max : max_d2) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
-    double fx = cfx[i], fy = cfy[i], m = ctq[i];
-    if constexpr (External) {
-      fx += efx[i];
-      fy += efy[i];
-      m += etq[i];
+    const double vx0 = pvx[i], vy0 = pvy[i], w0 = pw[i];
+    const double urx = gu[i] - vx0, ury = gv[i] - vy0;
+    const double wrel = grot[i] - w0;
+    double dfx = 0.0, dfy = 0.0, mfx = 0.0, mfy = 0.0;
+    if constexpr (Drag) {
+      dfx = K[i] * urx;
+      dfy = K[i] * ury;
     }
-    const double vxn = pvx[i] + dt * (fx * im[i] + gx);
-    const double vyn = pvy[i] + dt * (fy * im[i] + gy);
+    if constexpr (Magnus) {
+      const double m = magnus_sign * M[i] * wrel;  // Table 1: m z x u_r
+      mfx = -m * ury;
+      mfy = m * urx;
+    }
+    const double ex = dfx + mfx, ey = dfy + mfy;  // exchanged with the gas (eq. 13)
+    double fx = ex, fy = ey;
+    if constexpr (Pressure) {
+      fx += pfx[i];
+      fy += pfy[i];
+    }
+    const double vxn = vx0 + dt * ((cfx[i] + fx) * im[i] + gx);
+    const double vyn = vy0 + dt * ((cfy[i] + fy) * im[i] + gy);
     pvx[i] = vxn;
     pvy[i] = vyn;
+    if constexpr (Drag || Magnus) {
+      jx[i] += ex * dt;
+      jy[i] += ey * dt;
+      work[i] += (ex * 0.5 * (vx0 + vxn) + ey * 0.5 * (vy0 + vyn)) * dt;
+    }
+    double tq = ctq[i];
+    double fluid_tq = 0.0;
+    if constexpr (Torque) {
+      fluid_tq = kap[i] * wrel;
+      tq += fluid_tq;
+    }
+    pw[i] = w0 + dt * tq * ii[i];
+    double q = 0.0;
+    if constexpr (Heat) {
+      q = H[i] * (gT[i] - pT[i]);
+      pT[i] += dt * q * im[i] * inv_c;  // eq. (7)
+      heat[i] += q * dt;
+    }
     const double xn = px[i] + dt * vxn, yn = py[i] + dt * vyn;
     px[i] = xn;
     py[i] = yn;
-    pw[i] += dt * m * ii[i];
-    if constexpr (Thermal) pT[i] += dt * heat[i] * im[i] * inv_c;  // eq. (7)
+    if constexpr (Store) {
+      out_dfx[i] = dfx;
+      out_dfy[i] = dfy;
+      out_mfx[i] = mfx;
+      out_mfy[i] = mfy;
+      out_tq[i] = fluid_tq;
+      out_q[i] = q;
+      out_wr[i] = wrel;
+    }
     const double ddx = xn - xb[i], ddy = yn - yb[i];
-    max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
+    max_d2 = std::max(max_d2, (ddx * ddx + ddy * ddy) * is2[i]);
   }
   return max_d2;
 }
 
+/// Calls f.template operator()<b0, b1, ...>() with the runtime flags as template arguments.
+template <std::size_t N, class F, bool... B>
+double dispatch_flags(const std::array<bool, N>& flags, F&& f) {
+  if constexpr (sizeof...(B) == N) {
+    return f.template operator()<B...>();
+  } else {
+    return flags[sizeof...(B)] ? dispatch_flags<N, F, B..., true>(flags, std::forward<F>(f))
+                               : dispatch_flags<N, F, B..., false>(flags, std::forward<F>(f));
+  }
+}
+
 }  // namespace
 
-void ParcelSystem::integrate(double dt) {
-  const std::size_t n = size();
-  if (external_forces) {
-    // The coupling's parts enter as one sum per component (fixed order: drag, Magnus, pressure).
-    ext_fx_.resize(n);
-    ext_fy_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-    for (std::size_t i = 0; i < n; ++i) {
-      ext_fx_[i] = drag_fx[i] + magnus_fx[i] + pressure_fx[i];
-      ext_fy_[i] = drag_fy[i] + magnus_fy[i] + pressure_fy[i];
-    }
-  }
-  const IntegrateArrays a{x.data(), y.data(), vx.data(), vy.data(), omega.data(), temperature.data(),
-                          inv_mass_real_.data(), inv_inertia_real_.data(), contact_fx.data(),
-                          contact_fy.data(), contact_torque.data(), ext_fx_.data(), ext_fy_.data(),
-                          fluid_torque.data(), heat_rate.data(), x_build_.data(), y_build_.data()};
-  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity;
+void ParcelSystem::integrate(double dt, bool store_parts) {
   double max_d2 = 0.0;
-  if (external_forces) {
-    max_d2 = integrate_temperature ? integrate_kernel<true, true>(a, n, dt, gx, gy, inv_c)
-                                   : integrate_kernel<true, false>(a, n, dt, gx, gy, inv_c);
-  } else {
-    max_d2 = integrate_temperature ? integrate_kernel<false, true>(a, n, dt, gx, gy, inv_c)
-                                   : integrate_kernel<false, false>(a, n, dt, gx, gy, inv_c);
+  if (forcing_.any()) {
+    integrate_forced(dt, store_parts);
+    return;
   }
-  // Two parcels each moving skin/2 towards each other can just reach: rebuild then.
-  if (4.0 * max_d2 > skin_ * skin_) needs_rebuild_ = true;
+  max_d2 = integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(), inv_mass_real_.data(),
+                           inv_inertia_real_.data(), contact_fx.data(), contact_fy.data(), contact_torque.data(),
+                           x_build_.data(), y_build_.data(), inv_skin2_.data(), size(), dt, cfg_.gravity_x,
+                           cfg_.gravity_y);
+  // A parcel moved more than its skin: a pair may now be closer than the list knows.
+  if (max_d2 > 1.0) needs_rebuild_ = true;
+}
+
+void ParcelSystem::integrate_forced(double dt, bool store_parts) {
+  const GasForcing& f = forcing_;
+  auto col = [this](ParcelColumn c) { return attached_[c.index].data(); };
+  const ForcedArrays a{x.data(),
+                       y.data(),
+                       vx.data(),
+                       vy.data(),
+                       omega.data(),
+                       temperature.data(),
+                       inv_mass_real_.data(),
+                       inv_inertia_real_.data(),
+                       contact_fx.data(),
+                       contact_fy.data(),
+                       contact_torque.data(),
+                       x_build_.data(),
+                       y_build_.data(),
+                       inv_skin2_.data(),
+                       col(f.gas_u),
+                       col(f.gas_v),
+                       col(f.gas_rotation),
+                       col(f.gas_temperature),
+                       col(f.drag_coefficient),
+                       col(f.magnus_coefficient),
+                       col(f.torque_coefficient),
+                       col(f.heat_coefficient),
+                       pressure_fx.data(),
+                       pressure_fy.data(),
+                       col(f.impulse_x),
+                       col(f.impulse_y),
+                       col(f.work),
+                       col(f.heat_in),
+                       drag_fx.data(),
+                       drag_fy.data(),
+                       magnus_fx.data(),
+                       magnus_fy.data(),
+                       fluid_torque.data(),
+                       heat_rate.data(),
+                       col(f.relative_rotation)};
+  const std::size_t n = size();
+  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity, sign = f.magnus_sign;
+  const std::array<bool, 6> flags{f.drag, f.magnus, f.pressure, f.torque, f.heat, store_parts};
+  const double max_d2 = dispatch_flags(flags, [&]<bool D, bool M, bool P, bool T, bool H, bool S>() {
+    return integrate_forced_kernel<D, M, P, T, H, S>(a, n, dt, gx, gy, inv_c, sign);
+  });
+  if (max_d2 > 1.0) needs_rebuild_ = true;
 }
 
 }  // namespace dustlift

@@ -32,6 +32,8 @@ void ParcelSystem::sort_by_cell() {
   double d_max = 0.0;
   for (double di : diameter) d_max = std::max(d_max, di);
   const double cutoff = d_max + skin_;
+  radius_max_ = 0.5 * d_max;
+  cutoff_ = cutoff;
   cells_x_ = std::max(1, static_cast<int>(std::floor(length_x_ / cutoff)));
   cells_y_ = std::max(1, static_cast<int>(std::floor((d.y_max - d.y_min) / cutoff)));
   if (d.periodic_x && cells_x_ < 3) {
@@ -68,12 +70,7 @@ void ParcelSystem::sort_by_cell() {
   scratch_i_.assign(cell_start_.begin(), cell_start_.end() - 1);  // fill cursors
   for (std::size_t i = 0; i < n; ++i) order_[scratch_i_[cell_of_[i]]++] = static_cast<std::int32_t>(i);
 
-  for (auto* v : {&x, &y, &vx, &vy, &omega, &temperature, &diameter, &radius, &mass, &inertia,
-                  &n_real, &x_initial, &y_initial, &contact_fx, &contact_fy, &contact_torque,
-                  &drag_fx, &drag_fy, &magnus_fx, &magnus_fy, &pressure_fx, &pressure_fy,
-                  &fluid_torque, &heat_rate, &inv_mass_real_, &inv_inertia_real_}) {
-    permute(*v, order_, scratch_d_);
-  }
+  for_each_permuted_column([this](std::vector<double>& v) { permute(v, order_, scratch_d_); });
   permute(id, order_, scratch_i_);
   scratch_d_.resize(n * kWallCount);
   for (std::size_t k = 0; k < n; ++k) {
@@ -97,20 +94,43 @@ void ParcelSystem::rebuild_neighbours() {
 
   const DemDomain& d = cfg_.domain;
   const bool periodic = d.periodic_x;
-  const double skin = skin_;
-  // Visits the candidates of parcel i in a fixed order (the 3x3 cells, major axis outer,
-  // parcels in cell order) and calls f(j, image) for each within r_i + r_j + skin.
-  auto for_each_candidate = [&](std::size_t i, auto&& f) {
+  // Per-parcel skin (the distance a parcel may move before the list is rebuilt): the base
+  // skin/2 for most parcels, more for the fast ones so that one parcel blown through the gas
+  // does not make every parcel's list be rebuilt every few sub-steps. A pair is listed when
+  // its gap is below s_i + s_j, so no contact can be missed before one of them has moved
+  // its own skin (integrate() then asks for a rebuild).
+  const double s_base = 0.5 * skin_;
+  const double s_time = cfg_.fast_skin_substeps * stable_time_step();
+  // Fast skins stay within a block of cells that the periodic images cannot wrap around.
+  int max_block = 8;
+  if (periodic) max_block = std::min(max_block, (cells_x_ - 1) / 2);
+  const double s_cap = std::max(s_base, max_block * std::min(cell_dx_, cell_dy_) - cutoff_);
+  half_skin_.resize(n);
+  double s_max = s_base;
+#pragma omp parallel for schedule(static) reduction(max : s_max) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double speed = std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]);
+    const double s = std::clamp(speed * s_time, s_base, s_cap);
+    half_skin_[i] = s;
+    s_max = std::max(s_max, s);
+  }
+  fast_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (half_skin_[i] > s_base) fast_.push_back(static_cast<std::int32_t>(i));
+  }
+
+  // Visits the parcels of the cells within `block` cells of parcel i's cell in a fixed order
+  // (major axis outer, minor inner, parcels in cell order) and calls f(j, image).
+  auto for_each_nearby = [&](std::size_t i, int block, auto&& f) {
     const int c = cell_of_[i];
     const int cx = x_major_ ? c / cells_y_ : c % cells_x_;
     const int cy = x_major_ ? c % cells_y_ : c / cells_x_;
-    // Major axis outside, minor inside: the visited cells are (nearly) contiguous in memory.
-    for (int outer = -1; outer <= 1; ++outer) {
-      for (int inner = -1; inner <= 1; ++inner) {
-        const int dx = x_major_ ? outer : inner, dy = x_major_ ? inner : outer;
-        const int ry = cy + dy;
+    for (int outer = -block; outer <= block; ++outer) {
+      for (int inner = -block; inner <= block; ++inner) {
+        const int ddx = x_major_ ? outer : inner, ddy = x_major_ ? inner : outer;
+        const int ry = cy + ddy;
         if (ry < 0 || ry >= cells_y_) continue;
-        int rx = cx + dx;
+        int rx = cx + ddx;
         int image = 0;
         if (rx < 0 || rx >= cells_x_) {
           if (!periodic) continue;
@@ -119,12 +139,62 @@ void ParcelSystem::rebuild_neighbours() {
         }
         const int cell = cell_index(rx, ry);
         for (std::int32_t j = cell_start_[cell]; j < cell_start_[cell + 1]; ++j) {
-          if (static_cast<std::size_t>(j) == i) continue;
-          const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
-          const double reach = radius[i] + radius[j] + skin;
-          if (ddx * ddx + ddy * ddy < reach * reach) f(j, image);
+          if (static_cast<std::size_t>(j) != i) f(j, image);
         }
       }
+    }
+  };
+  auto listed = [&](std::size_t i, std::int32_t j, int image) {
+    const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
+    const double reach = radius[i] + radius[j] + half_skin_[i] + half_skin_[j];
+    return ddx * ddx + ddy * ddy < reach * reach;
+  };
+
+  // Fast parcels search a block wide enough for any partner; the pairs they find are listed
+  // on both sides (a slow partner would not find them in its 3x3 block).
+  const double min_cell = std::min(cell_dx_, cell_dy_);
+  const std::size_t n_fast = fast_.size();
+  fast_pairs_.clear();
+  for (std::size_t f = 0; f < n_fast; ++f) {
+    const auto i = static_cast<std::size_t>(fast_[f]);
+    const double r = 2.0 * radius_max_ + half_skin_[i] + s_max;
+    const int block = std::max(1, static_cast<int>(std::ceil(r / min_cell)));
+    for_each_nearby(i, block, [&](std::int32_t j, int image) {
+      if (listed(i, j, image)) fast_pairs_.push_back({static_cast<std::int32_t>(i), j, static_cast<std::int8_t>(image)});
+    });
+  }
+  // Slow partners of fast parcels, sorted by (slow parcel, fast parcel): their extra slots.
+  extra_pairs_.clear();
+  for (const FastPair& fp : fast_pairs_) {
+    if (half_skin_[static_cast<std::size_t>(fp.j)] <= s_base) {
+      extra_pairs_.push_back({fp.j, fp.i, static_cast<std::int8_t>(-fp.image)});
+    }
+  }
+  std::sort(extra_pairs_.begin(), extra_pairs_.end(), [](const FastPair& a, const FastPair& b) {
+    return a.i != b.i ? a.i < b.i : a.j < b.j;
+  });
+  extra_start_.assign(n + 1, 0);
+  for (const FastPair& e : extra_pairs_) ++extra_start_[static_cast<std::size_t>(e.i) + 1];
+  for (std::size_t i = 0; i < n; ++i) extra_start_[i + 1] += extra_start_[i];
+  fast_start_.assign(n + 1, 0);
+  for (const FastPair& fp : fast_pairs_) ++fast_start_[static_cast<std::size_t>(fp.i) + 1];
+  for (std::size_t i = 0; i < n; ++i) fast_start_[i + 1] += fast_start_[i];
+
+  // Slow parcels: slow partners from the 3x3 block, then the fast ones that found them.
+  auto for_each_partner = [&](std::size_t i, auto&& f) {
+    if (half_skin_[i] > s_base) {
+      for (std::int32_t k = fast_start_[i]; k < fast_start_[i + 1]; ++k) {
+        const FastPair& fp = fast_pairs_[static_cast<std::size_t>(k)];
+        f(fp.j, fp.image);
+      }
+      return;
+    }
+    for_each_nearby(i, 1, [&](std::int32_t j, int image) {
+      if (half_skin_[static_cast<std::size_t>(j)] <= s_base && listed(i, j, image)) f(j, image);
+    });
+    for (std::int32_t k = extra_start_[i]; k < extra_start_[i + 1]; ++k) {
+      const FastPair& e = extra_pairs_[static_cast<std::size_t>(k)];
+      f(e.j, e.image);
     }
   };
 
@@ -133,7 +203,7 @@ void ParcelSystem::rebuild_neighbours() {
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     std::int32_t count = 0;
-    for_each_candidate(i, [&](std::int32_t, int) { ++count; });
+    for_each_partner(i, [&](std::int32_t, int) { ++count; });
     nbr_offset[i + 1] = count;
   }
   for (std::size_t i = 0; i < n; ++i) nbr_offset[i + 1] += nbr_offset[i];
@@ -144,7 +214,7 @@ void ParcelSystem::rebuild_neighbours() {
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     std::int32_t k = nbr_offset[i];
-    for_each_candidate(i, [&](std::int32_t j, int image) {
+    for_each_partner(i, [&](std::int32_t j, int image) {
       nbr_index[k] = j;
       nbr_image[k] = static_cast<std::int8_t>(image);
       nbr_delta[k] = 0.0;
@@ -163,12 +233,12 @@ void ParcelSystem::rebuild_neighbours() {
       }
     }
   }
-  // Walls each parcel may touch before the next rebuild (it moves less than skin/2 until
+  // Walls each parcel may touch before the next rebuild (it moves less than its skin until
   // then, and less than a skin per step, so a wall contact also gets its end seen).
   wall_mask_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
-    const double reach = radius[i] + skin;
+    const double reach = radius[i] + 2.0 * half_skin_[i];
     std::uint8_t mask = 0;
     if (d.wall_bottom && y[i] - d.y_min < reach) mask |= 1u << static_cast<int>(Wall::Bottom);
     if (d.wall_top && d.y_max - y[i] < reach) mask |= 1u << static_cast<int>(Wall::Top);
@@ -182,6 +252,8 @@ void ParcelSystem::rebuild_neighbours() {
   }
   x_build_ = x;  // same size: no allocation
   y_build_ = y;
+  inv_skin2_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
   needs_rebuild_ = false;
   ++rebuilds_;
 }

@@ -21,14 +21,78 @@ ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
   skin_ = cfg_.skin * cfg_.parcel_diameter;
 }
 
-void ParcelSystem::reserve(std::size_t n) {
-  for (auto* v : {&x, &y, &vx, &vy, &omega, &temperature, &diameter, &radius, &mass, &inertia,
-                  &n_real, &x_initial, &y_initial, &contact_fx, &contact_fy, &contact_torque,
-                  &drag_fx, &drag_fy, &magnus_fx, &magnus_fy, &pressure_fx, &pressure_fy,
-                  &fluid_torque, &heat_rate, &inv_mass_real_, &inv_inertia_real_, &x_build_,
-                  &y_build_}) {
-    v->reserve(n);
+const std::vector<ParcelColumnSpec>& ParcelSystem::builtin_specs() {
+  // Same order as builtin_columns(). Force parts, torques and heat are per REAL particle.
+  static const std::vector<ParcelColumnSpec> specs = {
+      {"x", "m", true, false},
+      {"y", "m", true, false},
+      {"vx", "m/s", true, false},
+      {"vy", "m/s", true, false},
+      {"omega", "rad/s", true, false},
+      {"temperature", "K", true, false},
+      {"diameter", "m", true, false},
+      {"radius", "m", true, false},
+      {"mass", "kg/m", true, false},
+      {"inertia", "kg m", true, false},
+      {"n_real", "1/m", true, false},
+      {"x_initial", "m", true, false},
+      {"y_initial", "m", true, false},
+      {"contact_fx", "N", true, false},
+      {"contact_fy", "N", true, false},
+      {"contact_torque", "N m", true, false},
+      {"drag_fx", "N", true, false},
+      {"drag_fy", "N", true, false},
+      {"magnus_fx", "N", true, false},
+      {"magnus_fy", "N", true, false},
+      {"pressure_fx", "N", true, false},
+      {"pressure_fy", "N", true, false},
+      {"fluid_torque", "N m", true, false},
+      {"heat_rate", "W", true, false},
+  };
+  return specs;
+}
+
+std::vector<std::vector<double>*> ParcelSystem::builtin_columns() {
+  return {&x,           &y,           &vx,          &vy,          &omega,       &temperature,
+          &diameter,    &radius,      &mass,        &inertia,     &n_real,      &x_initial,
+          &y_initial,   &contact_fx,  &contact_fy,  &contact_torque, &drag_fx,  &drag_fy,
+          &magnus_fx,   &magnus_fy,   &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate};
+}
+
+std::vector<const std::vector<double>*> ParcelSystem::builtin_columns() const {
+  auto cols = const_cast<ParcelSystem*>(this)->builtin_columns();
+  return {cols.begin(), cols.end()};
+}
+
+void ParcelSystem::for_each_permuted_column(const std::function<void(std::vector<double>&)>& f) {
+  for (std::vector<double>* c : builtin_columns()) f(*c);
+  f(inv_mass_real_);
+  f(inv_inertia_real_);
+  for (auto& c : attached_) f(c);
+}
+
+ParcelColumn ParcelSystem::attach_column(ParcelColumnSpec spec) {
+  attached_specs_.push_back(std::move(spec));
+  attached_.emplace_back(size(), 0.0);
+  attached_.back().reserve(x.capacity());
+  return ParcelColumn{attached_.size() - 1};
+}
+
+void ParcelSystem::set_gas_forcing(const GasForcing& f) {
+  for (ParcelColumn c : {f.gas_u, f.gas_v, f.gas_rotation, f.gas_temperature, f.drag_coefficient,
+                         f.magnus_coefficient, f.torque_coefficient, f.heat_coefficient, f.impulse_x, f.impulse_y,
+                         f.work, f.heat_in, f.relative_rotation}) {
+    if (!c.valid() || c.index >= attached_.size()) {
+      throw std::invalid_argument("ParcelSystem::set_gas_forcing: a forcing column is not attached");
+    }
   }
+  forcing_ = f;
+}
+
+void ParcelSystem::reserve(std::size_t n) {
+  for_each_permuted_column([n](std::vector<double>& v) { v.reserve(n); });
+  x_build_.reserve(n);
+  y_build_.reserve(n);
   id.reserve(n);
   wall_delta.reserve(n * kWallCount);
 }
@@ -61,6 +125,7 @@ void ParcelSystem::add_parcel(const ParcelInit& p) {
                   &magnus_fy, &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate}) {
     v->push_back(0.0);
   }
+  for (auto& c : attached_) c.push_back(0.0);
   inv_mass_real_.push_back(1.0 / m_real);
   inv_inertia_real_.push_back(1.0 / I_real);
   x_build_.push_back(p.x);
@@ -80,6 +145,7 @@ ParcelInternals ParcelSystem::internals() const {
   s.inv_inertia_real = inv_inertia_real_;
   s.x_build = x_build_;
   s.y_build = y_build_;
+  s.half_skin = half_skin_;
   s.wall_mask = wall_mask_;
   s.needs_rebuild = needs_rebuild_;
   s.time = time_;
@@ -95,17 +161,16 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("ParcelSystem::restore_internals: ") + what);
   };
-  for (const auto* v : {&y, &vx, &vy, &omega, &temperature, &diameter, &radius, &mass, &inertia, &n_real,
-                        &x_initial, &y_initial, &contact_fx, &contact_fy, &contact_torque, &drag_fx, &drag_fy,
-                        &magnus_fx, &magnus_fy, &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate}) {
-    require(v->size() == n, "a per-parcel array has the wrong length");
-  }
+  for (const auto* v : builtin_columns()) require(v->size() == n, "a per-parcel array has the wrong length");
+  for (const auto& c : attached_) require(c.size() == n, "an attached column has the wrong length");
   require(id.size() == n && wall_delta.size() == n * kWallCount, "id or wall_delta has the wrong length");
   require(s.inv_mass_real.size() == n && s.inv_inertia_real.size() == n && s.x_build.size() == n &&
               s.y_build.size() == n,
           "a private per-parcel array has the wrong length");
   // The wall mask exists once a neighbour list was built (it is rebuilt with the list).
   require(s.wall_mask.size() == n || (s.needs_rebuild && s.wall_mask.empty()), "wall_mask has the wrong length");
+  require(s.half_skin.size() == n || (s.needs_rebuild && s.half_skin.empty()), "half_skin has the wrong length");
+  for (double h : s.half_skin) require(h > 0.0 && std::isfinite(h), "half_skin must be positive");
   for (std::uint8_t m : s.wall_mask) require(m < (1u << kWallCount), "wall_mask out of range");
   for (std::int32_t i : id) require(i >= 0 && static_cast<std::size_t>(i) < n, "parcel id out of range");
   // The contact history must index the parcels it was saved with.
@@ -125,6 +190,9 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
   inv_inertia_real_ = s.inv_inertia_real;
   x_build_ = s.x_build;
   y_build_ = s.y_build;
+  half_skin_ = s.half_skin;
+  inv_skin2_.resize(half_skin_.size());
+  for (std::size_t i = 0; i < half_skin_.size(); ++i) inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
   wall_mask_ = s.wall_mask;
   needs_rebuild_ = s.needs_rebuild;
   time_ = s.time;
@@ -154,7 +222,7 @@ int ParcelSystem::advance(double dt_total, const SubstepHook& hook) {
   const double t0 = time_;
   for (int k = 0; k < n; ++k) {
     if (hook) hook(*this, t0 + k * dt);
-    step(dt);
+    step_with_parts(dt, !parts_last_only_ || k == n - 1);
   }
   time_ = t0 + dt_total;  // no drift from summing n sub-steps
   return n;

@@ -14,8 +14,10 @@
 // max. Results are identical for any OpenMP thread count.
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "solver/core/phase_timer.hpp"
 #include "solver/dem/dem_config.hpp"
 
 namespace dustlift {
@@ -28,6 +30,40 @@ inline constexpr int kWallCount = static_cast<int>(Wall::Count);
 /// the work (and on a shared machine, threads waiting for a busy core cost far more).
 /// Results do not depend on it (every parcel gathers its own sums).
 inline constexpr std::size_t kParallelMinimum = 4096;
+
+/// A column of the parcel table: its name and unit (as written to checkpoints, .vtp and
+/// Catalyst) and what it is for. Every column is permuted with the parcels by the cell sort.
+struct ParcelColumnSpec {
+  std::string name;
+  std::string unit;
+  bool checkpointed = false;  ///< part of the state a restart needs
+  bool written = false;       ///< written to the .vtp (and published in situ)
+};
+
+/// Handle of a column attached to a ParcelSystem (see attach_column).
+struct ParcelColumn {
+  std::size_t index = static_cast<std::size_t>(-1);
+  bool valid() const { return index != static_cast<std::size_t>(-1); }
+};
+
+/// Sub-step gas forcing of the parcels (frozen gas over one CFD step), per REAL particle:
+///   F = K (u_g - v) + s M (Omega_g - w) z x (u_g - v) + F_p,   M_z = kappa (Omega_g - w),
+///   Q = H (T_g - T),
+/// with the gas values u_g, Omega_g (half the vorticity), T_g and the coefficients K, M,
+/// kappa, H (columns the coupling fills once per CFD step from the tested aero:: kernels,
+/// docs/coupling.md) and F_p the pressure_fx/fy columns. Only the effects switched on are
+/// evaluated. The exchange with the gas, drag + Magnus impulse, its work (with the
+/// symplectic-Euler mean velocity, exactly the kinetic energy it gives) and Q dt, is summed
+/// per parcel over the sub-steps into the accumulator columns.
+struct GasForcing {
+  bool drag = false, magnus = false, pressure = false, torque = false, heat = false;
+  double magnus_sign = 1.0;  ///< +1 standard (Rubinow-Keller) convention, -1 the paper's
+  ParcelColumn gas_u, gas_v, gas_rotation, gas_temperature;
+  ParcelColumn drag_coefficient, magnus_coefficient, torque_coefficient, heat_coefficient;
+  ParcelColumn impulse_x, impulse_y, work, heat_in;  ///< accumulators (zeroed by the coupling)
+  ParcelColumn relative_rotation;                  ///< Omega_g - w of the last sub-step
+  bool any() const { return drag || magnus || pressure || torque || heat; }
+};
 
 /// One parcel to add (before the first step).
 struct ParcelInit {
@@ -47,6 +83,7 @@ struct ParcelInit {
 struct ParcelInternals {
   std::vector<double> inv_mass_real, inv_inertia_real;  ///< 1/m and 1/I of one real particle
   std::vector<double> x_build, y_build;                 ///< positions at the last rebuild
+  std::vector<double> half_skin;                        ///< how far each may move until the next
   std::vector<std::uint8_t> wall_mask;                  ///< walls within reach until the next rebuild
   bool needs_rebuild = true;
   double time = 0.0;
@@ -68,9 +105,8 @@ class ParcelSystem {
   /// Eq. (18): nu_DEM sqrt(min real-particle mass / max spring constant).
   double stable_time_step() const;
 
-  /// One symplectic Euler step (v^{n+1} = v^n + dt F^n/m, x^{n+1} = x^n + dt v^{n+1}).
-  /// The external force parts (drag, Magnus, pressure, fluid torque, heat) are used as
-  /// they are in the arrays; contact parts are recomputed.
+  /// One symplectic Euler step (v^{n+1} = v^n + dt F^n/m, x^{n+1} = x^n + dt v^{n+1}) under
+  /// the contacts (recomputed), gravity and, when set, the gas forcing (set_gas_forcing).
   void step(double dt);
 
   /// Called before every sub-step with (system, sub-step time) so the coupling can fill
@@ -93,20 +129,50 @@ class ParcelSystem {
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long neighbour_rebuilds() const { return rebuilds_; }
+  /// Wall seconds spent in the contact pass, the integration and the neighbour rebuilds.
+  struct Timings {
+    double contacts = 0.0, integrate = 0.0, rebuild = 0.0;
+  };
+  const Timings& timings() const { return timings_; }
   const DemConfig& config() const { return cfg_; }
   /// Changes the body acceleration (e.g. gravity only while a bed settles).
   void set_gravity(double gx, double gy) {
     cfg_.gravity_x = gx;
     cfg_.gravity_y = gy;
   }
-  /// Set by the coupling when it fills heat_rate (eq. 7); off costs nothing.
-  bool integrate_temperature = false;
-  /// Set by the coupling when it fills the drag/Magnus/pressure/fluid-torque arrays;
-  /// while false the integrator does not read them (a DEM-only run pays nothing).
-  bool external_forces = false;
 
   /// Forces a neighbour rebuild (and cell re-sort) before the next step.
   void invalidate_neighbours() { needs_rebuild_ = true; }
+  /// Sorts the parcels by cell and builds the neighbour list now if it is due (the coupling
+  /// does this before its first deposit, so that the deposit order of parcels at rest never
+  /// changes afterwards: a resting layer then deposits the same alpha_p to the last bit).
+  void build_neighbours_if_due() {
+    if (needs_rebuild_) rebuild_neighbours();
+  }
+
+  /// Attaches a column of doubles to the parcel table (zeros for the parcels present, and for
+  /// parcels added later); from then on it is permuted with the parcels.
+  ParcelColumn attach_column(ParcelColumnSpec spec);
+  std::vector<double>& column(ParcelColumn c) { return attached_[c.index]; }
+  const std::vector<double>& column(ParcelColumn c) const { return attached_[c.index]; }
+  /// The attached columns, in the order attached.
+  std::size_t attached_count() const { return attached_.size(); }
+  const ParcelColumnSpec& attached_spec(std::size_t k) const { return attached_specs_[k]; }
+  const std::vector<double>& attached(std::size_t k) const { return attached_[k]; }
+  std::vector<double>& attached(std::size_t k) { return attached_[k]; }
+
+  /// The built-in double columns (state, properties, force parts) with their specs, and
+  /// their arrays; same order for both.
+  static const std::vector<ParcelColumnSpec>& builtin_specs();
+  std::vector<std::vector<double>*> builtin_columns();
+  std::vector<const std::vector<double>*> builtin_columns() const;
+
+  /// Sets the sub-step gas forcing (the coupling, once). Its columns must be attached here.
+  void set_gas_forcing(const GasForcing& f);
+  /// Marks the next advance() to store the force parts, relative rotation and heat rate of
+  /// its last sub-step in their columns (the observers' view); other sub-steps skip those
+  /// stores. Default: always stored.
+  void store_parts_on_last_substep_only(bool on) { parts_last_only_ = on; }
 
   /// Checkpoint access to the private state (see ParcelInternals).
   ParcelInternals internals() const;
@@ -147,11 +213,15 @@ class ParcelSystem {
   std::vector<double> wall_delta;
 
  private:
+  void step_with_parts(double dt, bool store_parts);
   void rebuild_neighbours();
   void sort_by_cell();
   void compute_contacts(double dt);
-  void integrate(double dt);
+  void integrate(double dt, bool store_parts);
+  void integrate_forced(double dt, bool store_parts);
   double wall_position(int w) const;
+  /// Calls f for every per-parcel double column the cell sort permutes.
+  void for_each_permuted_column(const std::function<void(std::vector<double>&)>& f);
 
   DemConfig cfg_;
   double length_x_ = 0.0;           ///< periodic length
@@ -164,8 +234,14 @@ class ParcelSystem {
   // Derived per parcel, permuted along with the state.
   std::vector<double> inv_mass_real_, inv_inertia_real_;
   std::vector<double> x_build_, y_build_;   ///< positions at the last rebuild
-  std::vector<double> ext_fx_, ext_fy_;     ///< drag + Magnus + pressure, per step
   std::vector<std::uint8_t> wall_mask_;     ///< bit w: wall w within reach until the next rebuild
+
+  // Attached columns (coupling state, filters' state), permuted with the parcels.
+  std::vector<ParcelColumnSpec> attached_specs_;
+  std::vector<std::vector<double>> attached_;
+  GasForcing forcing_;
+  bool parts_last_only_ = false;
+  Timings timings_;
 
   // Cell grid of the last rebuild.
   int cells_x_ = 1, cells_y_ = 1;
@@ -173,6 +249,17 @@ class ParcelSystem {
   int cell_index(int cx, int cy) const { return x_major_ ? cx * cells_y_ + cy : cy * cells_x_ + cx; }
   double cell_dx_ = 1.0, cell_dy_ = 1.0;
   std::vector<std::int32_t> cell_of_, cell_start_, order_;
+
+  // Per-parcel skins of the last rebuild (half_skin_: how far the parcel may move) and the
+  // fast parcels' pairs (see rebuild_neighbours).
+  struct FastPair {
+    std::int32_t i, j;
+    std::int8_t image;
+  };
+  std::vector<double> half_skin_, inv_skin2_;
+  std::vector<std::int32_t> fast_, fast_start_, extra_start_;
+  std::vector<FastPair> fast_pairs_, extra_pairs_;
+  double radius_max_ = 0.0, cutoff_ = 0.0;
 
   // Rebuild scratch (kept to avoid reallocation).
   std::vector<double> scratch_d_;

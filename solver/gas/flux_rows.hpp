@@ -37,15 +37,19 @@ struct FaceRowScratch {
   double* p_r;
 };
 
-/// Output: porosity-weighted fluxes of mass, x/y momentum and energy per face.
+/// Output per face: porosity-weighted fluxes of mass, convective x/y momentum and energy,
+/// and the face pressure p~ (not weighted; the full momentum flux is the convective part plus
+/// alpha_face p~ n, see slau2_split_flux).
 struct FaceRowOutput {
   double* mass;
   double* momentum_x;
   double* momentum_y;
   double* energy;
+  double* pressure;
 };
 
-/// Fills `out` for one row of faces with unit normal (nx, ny).
+/// Fills `out` for one row of faces with unit normal (nx, ny), `in.faces` faces from the
+/// stencil pointers on (a sub-range of a row is the same call with shifted pointers).
 template <class Thermo>
 void inviscid_flux_row(const Thermo& thermo, const MusclSettings& muscl, const FaceRowInput& in,
                        const FaceRowScratch& scratch, const FaceRowOutput& out, double nx, double ny);

@@ -78,24 +78,25 @@ inline FaceState face_state(const Thermo& th, double R, double rho, double u, do
   return {rho, u, v, p, h + 0.5 * (u * u + v * v), std::sqrt(cp * p / ((cp - R) * rho))};
 }
 
-/// SLAU2 times the face porosity for every face of the row. Kept out of line: GCC honours the
+/// SLAU2 times the face porosity for every face of the row (face pressure apart, unweighted). Kept out of line: GCC honours the
 /// restrict parameters only then, which lets it hoist the thermo constants and vectorise.
 template <class Thermo>
 [[gnu::noinline]] void flux_loop(const Thermo& th, double R, const double* __restrict rl, const double* __restrict ul,
                const double* __restrict vl, const double* __restrict pl, const double* __restrict rr,
                const double* __restrict ur, const double* __restrict vr, const double* __restrict pr,
                const double* __restrict a_m1, const double* __restrict a_c0, double* __restrict f_mass,
-               double* __restrict f_mx, double* __restrict f_my, double* __restrict f_e, int n, double nx,
-               double ny) {
+               double* __restrict f_mx, double* __restrict f_my, double* __restrict f_e,
+               double* __restrict f_p, int n, double nx, double ny) {
   for (int f = 0; f < n; ++f) {
     const FaceState L = face_state(th, R, rl[f], ul[f], vl[f], pl[f]);
     const FaceState Rs = face_state(th, R, rr[f], ur[f], vr[f], pr[f]);
-    const ConservedFlux F = slau2_flux(L, Rs, nx, ny);
+    const SplitFlux F = slau2_split_flux(L, Rs, nx, ny);
     const double a = 0.5 * (a_m1[f] + a_c0[f]);
     f_mass[f] = a * F.mass;
     f_mx[f] = a * F.momentum_x;
     f_my[f] = a * F.momentum_y;
     f_e[f] = a * F.energy;
+    f_p[f] = F.pressure;
   }
 }
 
@@ -116,7 +117,7 @@ void inviscid_flux_row(const Thermo& th, const MusclSettings& m, const FaceRowIn
   if (m.order != R_::FirstOrder) positivity_fallback(in, s);
 
   flux_loop(th, th.gas_constant(), s.rho_l, s.u_l, s.v_l, s.p_l, s.rho_r, s.u_r, s.v_r, s.p_r, in.alpha_m1,
-            in.alpha_c0, out.mass, out.momentum_x, out.momentum_y, out.energy, in.faces, nx, ny);
+            in.alpha_c0, out.mass, out.momentum_x, out.momentum_y, out.energy, out.pressure, in.faces, nx, ny);
 }
 
 }  // namespace dustlift

@@ -1,5 +1,6 @@
 #pragma once
 // Settings of the gas solver, as resolved from a scene (all SI units).
+#include <limits>
 #include <string>
 
 namespace dustlift {
@@ -16,7 +17,14 @@ struct PrimitiveState {
   double u = 0.0;    ///< m/s
   double v = 0.0;    ///< m/s
   double p = 1.0;    ///< Pa
+  /// K: the temperature as given (a scene's `T`), kept exactly; NaN: p / (rho R).
+  double T = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// T of a state: as given, else from p = rho R T (eq. 4, both thermodynamic models).
+inline double temperature_of(const PrimitiveState& s, double gas_constant) {
+  return s.T == s.T ? s.T : s.p / (s.rho * gas_constant);
+}
 
 struct ThermoConfig {
   ThermoModel model = ThermoModel::ThermallyPerfect;
@@ -56,6 +64,9 @@ struct GasConfig {
   TransportConfig transport;
   SchemeConfig scheme;
   BoundaryConfig boundary;
+  /// Skip cells whose whole stencil rests at one state with no source: exact (the update
+  /// would change no bit), set from the scene's run.skip_at_rest.
+  bool skip_resting_cells = true;
 };
 
 /// Initial condition of the gas.

@@ -15,7 +15,9 @@
 #include "solver/gas/flux_rows.hpp"
 #include "solver/gas/muscl.hpp"
 #include "solver/gas/shock_relations.hpp"
+#include "solver/gas/rest_ranges.hpp"
 #include "solver/gas/slau2.hpp"
+#include "solver/gas/stage_update.hpp"
 #include "solver/gas/thermo.hpp"
 #include "solver/gas/transport.hpp"
 
@@ -75,24 +77,41 @@ struct GasSolver::Impl {
 
   std::array<Field2D, 4> U, U0, source;
   Field2D rho, u, v, p, T, alpha, mu, lambda;
-  /// Porosity-weighted face fluxes: x-faces (nx+1) per row, y-face rows (ny+1) of nx.
+  /// Porosity-weighted convective face fluxes: x-faces (nx+1) per row, y-face rows (ny+1) of
+  /// nx; and the face pressures p~ (unweighted) on the same faces.
   std::array<std::vector<double>, 4> fx, fy;
+  std::vector<double> fx_pressure, fy_pressure;
+  /// Cells a stage updates, per interior row: [row_lo[j], row_hi[j]). Outside, the whole
+  /// stencil rests at one state and has no source, so the update would change no bit
+  /// (skip_resting; docs/gas-solver.md). Without skipping every row is [0, nx).
+  bool skip_resting;
+  std::vector<int> row_lo, row_hi;
+  /// Per grid row including ghost rows (index j + ng): cells [-ng, rest_to] rest at the left
+  /// reference state, cells [rest_from, nx + ng) at the right one.
+  std::vector<int> rest_to, rest_from;
+  RestReference left_reference, right_reference;
+  std::vector<SourceExtent> source_rows;  ///< per interior row, found once per step
+  /// Per interior row, the cells whose step-start state is saved in U0 this step (a hull of
+  /// the ranges updated so far; a cell enters it before its first update of the step).
+  std::vector<int> saved_lo, saved_hi;
   /// Geometry per index (ghosts included, offset ng): 1/width, 1/(c_{i+1}-c_i), 1/(c_{i+1}-c_{i-1}).
   std::vector<double> inv_dx, inv_dy, inv_dxc, inv_dyc, inv_dx2, inv_dy2;
   /// Inflow states along each boundary (one per boundary cell).
   std::vector<PrimitiveState> inflow_left, inflow_right, inflow_bottom, inflow_top;
-  /// Per row: first faulty interior cell index (or -1) and its fault.
-  /// Per-thread scratch rows of the flux kernels (8 arrays of scratch_len each).
+  /// Per-thread scratch rows of the flux and stage kernels (kScratchRows arrays of scratch_len).
   std::vector<double> scratch;
   std::size_t scratch_len = 0;
+  /// Per row: first faulty interior cell index (or -1) and its fault.
   std::vector<int> fault_i;
   std::vector<CellFault> fault_kind;
+  static constexpr std::size_t kScratchRows = 10;
+  long long cell_updates = 0;  ///< cell-stage updates done since construction
 
   Impl(const Grid2D& g, const GasConfig& c)
       : grid(g), config(c), thermo(make_thermo(c.thermo)), muscl(muscl_settings(c.scheme)),
         viscous(c.transport.model != TransportModel::Inviscid), nx(g.nx()), ny(g.ny()), ng(g.ghosts()),
-        stride(g.stride()),
-        threaded(g.interior_cells() >= kMinCellsForThreads), R(c.thermo.gas_constant) {
+        stride(g.stride()), threaded(g.interior_cells() >= kMinCellsForThreads), R(c.thermo.gas_constant),
+        skip_resting(c.skip_resting_cells) {
     if (ng < 2) throw std::invalid_argument("GasSolver: the grid needs at least 2 ghost layers");
     if (nx < 1 || ny < 1) throw std::invalid_argument("GasSolver: the grid has no cells");
     for (int k = 0; k < 4; ++k) {
@@ -102,6 +121,15 @@ struct GasSolver::Impl {
       fx[k].assign(static_cast<std::size_t>(nx + 1) * ny, 0.0);
       fy[k].assign(static_cast<std::size_t>(nx) * (ny + 1), 0.0);
     }
+    fx_pressure.assign(static_cast<std::size_t>(nx + 1) * ny, 0.0);
+    fy_pressure.assign(static_cast<std::size_t>(nx) * (ny + 1), 0.0);
+    row_lo.assign(static_cast<std::size_t>(ny), 0);
+    row_hi.assign(static_cast<std::size_t>(ny), nx);
+    rest_to.assign(static_cast<std::size_t>(ny + 2 * ng), -ng - 1);
+    rest_from.assign(static_cast<std::size_t>(ny + 2 * ng), nx + ng);
+    source_rows.assign(static_cast<std::size_t>(ny), SourceExtent{});
+    saved_lo.assign(static_cast<std::size_t>(ny), 0);
+    saved_hi.assign(static_cast<std::size_t>(ny), 0);
     rho = Field2D(grid, 1.0);
     u = Field2D(grid);
     v = Field2D(grid);
@@ -135,25 +163,6 @@ struct GasSolver::Impl {
   double geo(const std::vector<double>& v, int i) const { return v[static_cast<std::size_t>(i + ng)]; }
 
   // ---------------------------------------------------------------- primitives
-  /// Primitives of interior cell (i, j) from U; returns the fault found, if any.
-  template <class Th>
-  CellFault primitive_from_conserved(const Th& th, std::size_t c) {
-    const double a = alpha.data()[c];
-    const double m = U[0].data()[c];
-    const double r = m / a;
-    const double uu = U[1].data()[c] / m;
-    const double vv = U[2].data()[c] / m;
-    const double e = U[3].data()[c] / m - 0.5 * (uu * uu + vv * vv);
-    const double t = th.temperature(e, T.data()[c]);
-    const double pp = r * R * t;
-    rho.data()[c] = r;
-    u.data()[c] = uu;
-    v.data()[c] = vv;
-    T.data()[c] = t;
-    p.data()[c] = pp;
-    return classify(c, pp);
-  }
-
   /// The checks of one cell after its primitives were set.
   CellFault classify(std::size_t c, double pp) const {
     if (!(std::isfinite(U[0].data()[c]) && std::isfinite(U[1].data()[c]) && std::isfinite(U[2].data()[c]) &&
@@ -165,15 +174,22 @@ struct GasSolver::Impl {
     return CellFault::None;
   }
 
+  /// Sets cell (i, j) to state s: the primitives exactly as given (T as the scene gave it, or
+  /// p/(rho R)), the conserved variables from them. A state at rest then has exactly the same
+  /// p and T in every cell whatever the porosity, so it stays at rest to the last bit.
   template <class Th>
-  void conserved_from_primitive(const Th& th, int i, int j, const PrimitiveState& s) {
+  void set_cell_state(const Th& th, int i, int j, const PrimitiveState& s) {
     const std::size_t c = at(i, j);
     const double a = alpha.data()[c];
-    const double t = s.p / (s.rho * R);
+    const double t = temperature_of(s, R);
     U[0].data()[c] = a * s.rho;
     U[1].data()[c] = a * s.rho * s.u;
     U[2].data()[c] = a * s.rho * s.v;
     U[3].data()[c] = a * s.rho * (th.internal_energy(t) + 0.5 * (s.u * s.u + s.v * s.v));
+    rho.data()[c] = s.rho;
+    u.data()[c] = s.u;
+    v.data()[c] = s.v;
+    p.data()[c] = s.p;
     T.data()[c] = t;
   }
 
@@ -183,7 +199,7 @@ struct GasSolver::Impl {
     u.data()[dst] = s.u;
     v.data()[dst] = s.v;
     p.data()[dst] = s.p;
-    T.data()[dst] = s.p / (s.rho * R);
+    T.data()[dst] = temperature_of(s, R);
   }
   void copy_ghost(std::size_t dst, std::size_t src, MirrorSigns s) {
     rho.data()[dst] = rho.data()[src];
@@ -251,19 +267,28 @@ struct GasSolver::Impl {
   }
 
   // ---------------------------------------------------------------- fluxes
-  /// Scratch rows for the flux kernels: 8 arrays per thread.
+  double* thread_scratch_base() {
+    return scratch.data() + static_cast<std::size_t>(omp_get_thread_num()) * kScratchRows * scratch_len;
+  }
+  /// Scratch rows for the flux kernels (the first 8 of this thread's rows).
   FaceRowScratch thread_scratch() {
     const std::size_t len = scratch_len;
-    double* base = scratch.data() + static_cast<std::size_t>(omp_get_thread_num()) * 8 * len;
-    return {base, base + len, base + 2 * len, base + 3 * len, base + 4 * len, base + 5 * len, base + 6 * len,
-            base + 7 * len};
+    double* b = thread_scratch_base();
+    return {b, b + len, b + 2 * len, b + 3 * len, b + 4 * len, b + 5 * len, b + 6 * len, b + 7 * len};
+  }
+  /// Scratch rows for the stage update (the same memory: the phases are separated by barriers).
+  StageScratch stage_scratch() {
+    const std::size_t len = scratch_len;
+    double* b = thread_scratch_base();
+    return {{b, b + len, b + 2 * len, b + 3 * len}, b + 4 * len, b + 5 * len, b + 6 * len, b + 7 * len,
+            b + 8 * len, b + 9 * len};
   }
 
   /// Sized once for the current thread count (so normally no allocation in step()).
   void ensure_scratch() {
     scratch_len = static_cast<std::size_t>(std::max(nx, ny) + 1);
     const auto threads = static_cast<std::size_t>(threaded ? omp_get_max_threads() : 1);
-    if (scratch.size() < threads * 8 * scratch_len) scratch.resize(threads * 8 * scratch_len);
+    if (scratch.size() < threads * kScratchRows * scratch_len) scratch.resize(threads * kScratchRows * scratch_len);
   }
 
   /// The four stencil rows of a row of faces whose first face has cell c_m1 before it.
@@ -284,11 +309,27 @@ struct GasSolver::Impl {
     return transport_properties(config.transport, t, th.cp(t));
   }
 
+  /// Cells of grid row j (-1..ny) whose mu and lambda the viscous faces of the active rows
+  /// j-1..j+1 read: [lo, hi).
+  void transport_range(int j, int& lo, int& hi) const {
+    lo = nx + 1;
+    hi = -1;
+    for (int r = std::max(j - 1, 0); r <= std::min(j + 1, ny - 1); ++r) {
+      if (row_lo[static_cast<std::size_t>(r)] >= row_hi[static_cast<std::size_t>(r)]) continue;
+      lo = std::min(lo, row_lo[static_cast<std::size_t>(r)] - 1);
+      hi = std::max(hi, row_hi[static_cast<std::size_t>(r)] + 1);
+    }
+    lo = std::max(lo, -1);
+    hi = std::min(hi, nx + 1);
+  }
+
   template <class Th>
   void compute_transport(const Th& th) {
 #pragma omp for schedule(static)
     for (int j = -1; j <= ny; ++j) {
-      for (int i = -1; i <= nx; ++i) {
+      int lo = 0, hi = 0;
+      transport_range(j, lo, hi);
+      for (int i = lo; i < hi; ++i) {
         const std::size_t c = at(i, j);
         const TransportProperties tp = transport_at(th, T.data()[c]);
         mu.data()[c] = tp.mu;
@@ -297,12 +338,12 @@ struct GasSolver::Impl {
     }
   }
 
-  /// Subtracts the porosity-weighted viscous and heat fluxes of x-face row j.
-  void viscous_x_row(int j) {
+  /// Subtracts the porosity-weighted viscous and heat fluxes of x-faces [f0, f1) of row j.
+  void viscous_x_row(int j, int f0, int f1) {
     const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx + 1);
     const std::size_t cu = static_cast<std::size_t>(stride);
     const double it = geo(inv_dy2, j);
-    for (int f = 0; f <= nx; ++f) {
+    for (int f = f0; f < f1; ++f) {
       const std::size_t c = at(f, j), l = c - 1;  // face f: between cells f-1 and f
       const double idn = geo(inv_dxc, f - 1);
       const double ux = (u.data()[c] - u.data()[l]) * idn;
@@ -324,11 +365,11 @@ struct GasSolver::Impl {
     }
   }
 
-  /// Same for y-face row jf.
-  void viscous_y_row(int jf) {
+  /// Same for the y-faces [i0, i1) of face row jf.
+  void viscous_y_row(int jf, int i0, int i1) {
     const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx);
     const double idn = geo(inv_dyc, jf - 1);
-    for (int i = 0; i < nx; ++i) {
+    for (int i = i0; i < i1; ++i) {
       const std::size_t c = at(i, jf), l = c - static_cast<std::size_t>(stride);  // cells (i, jf-1), (i, jf)
       const double uy = (u.data()[c] - u.data()[l]) * idn;
       const double vy = (v.data()[c] - v.data()[l]) * idn;
@@ -350,15 +391,34 @@ struct GasSolver::Impl {
     }
   }
 
+  /// x-faces [row_lo, row_hi] of each row: those of its active cells (face f lies between
+  /// cells f-1 and f).
   template <class Th>
   void compute_x_fluxes(const Th& th) {
     const std::size_t nf = static_cast<std::size_t>(nx + 1);
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
-      const std::size_t row = static_cast<std::size_t>(j) * nf;
-      inviscid_flux_row(th, muscl, face_row_input(at(-1, j), 1, nx + 1), thread_scratch(),
-                        {fx[0].data() + row, fx[1].data() + row, fx[2].data() + row, fx[3].data() + row}, 1.0, 0.0);
-      if (viscous) viscous_x_row(j);
+      const int f0 = row_lo[static_cast<std::size_t>(j)], f1 = row_hi[static_cast<std::size_t>(j)] + 1;
+      if (f1 - f0 < 2) continue;
+      const std::size_t row = static_cast<std::size_t>(j) * nf + static_cast<std::size_t>(f0);
+      inviscid_flux_row(th, muscl, face_row_input(at(f0 - 1, j), 1, f1 - f0), thread_scratch(),
+                        {fx[0].data() + row, fx[1].data() + row, fx[2].data() + row, fx[3].data() + row,
+                         fx_pressure.data() + row},
+                        1.0, 0.0);
+      if (viscous) viscous_x_row(j, f0, f1);
+    }
+  }
+
+  /// y-faces of face row jf under the active cells of the rows on either side.
+  void y_face_range(int jf, int& i0, int& i1) const {
+    i0 = nx;
+    i1 = 0;
+    for (int r = jf - 1; r <= jf; ++r) {
+      if (r < 0 || r >= ny) continue;
+      const auto k = static_cast<std::size_t>(r);
+      if (row_lo[k] >= row_hi[k]) continue;
+      i0 = std::min(i0, row_lo[k]);
+      i1 = std::max(i1, row_hi[k]);
     }
   }
 
@@ -367,73 +427,142 @@ struct GasSolver::Impl {
     const auto step = static_cast<std::size_t>(stride);
 #pragma omp for schedule(static)
     for (int jf = 0; jf <= ny; ++jf) {
-      const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx);
-      inviscid_flux_row(th, muscl, face_row_input(at(0, jf - 1), step, nx), thread_scratch(),
-                        {fy[0].data() + row, fy[1].data() + row, fy[2].data() + row, fy[3].data() + row}, 0.0, 1.0);
-      if (viscous) viscous_y_row(jf);
+      int i0 = 0, i1 = 0;
+      y_face_range(jf, i0, i1);
+      if (i1 <= i0) continue;
+      const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i0);
+      inviscid_flux_row(th, muscl, face_row_input(at(i0, jf - 1), step, i1 - i0), thread_scratch(),
+                        {fy[0].data() + row, fy[1].data() + row, fy[2].data() + row, fy[3].data() + row,
+                         fy_pressure.data() + row},
+                        0.0, 1.0);
+      if (viscous) viscous_y_row(jf, i0, i1);
     }
   }
 
-  /// U = c_old U0 + c_new (U + dt L(U)), then the primitives of the new U (and the checks).
-  /// L contains the flux divergence, the porosity pressure source p_i (a_{i+1/2} - a_{i-1/2})/dx
-  /// (so that a grad p = div(a p) - p grad a holds discretely) and the external sources.
+  /// U = c_old U0 + c_new (U + dt L(U)) with c_old = 1 - c_new, written as
+  /// U0 + c_new (U - U0 + dt L) (stage_update.hpp), on the active cells of each row; then the
+  /// primitives of the cells whose state changed, and the checks.
   template <class Th>
-  void update(const Th& th, double dt, double c_old, double c_new) {
+  void update(const Th& th, double dt, double c_new) {
     const std::size_t nfx = static_cast<std::size_t>(nx + 1);
     const std::size_t nfy = static_cast<std::size_t>(nx);
     const auto sx = static_cast<std::size_t>(stride);
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
-      const double idy = geo(inv_dy, j);
-      // The flux phase is over (barrier), so this thread's scratch rows are free again.
-      const FaceRowScratch s = thread_scratch();
-      double* e_row = s.rho_l;
-      double* guess_row = s.u_l;
-      const std::size_t c0 = at(0, j);
-      for (int i = 0; i < nx; ++i) {
-        const std::size_t c = c0 + static_cast<std::size_t>(i);
-        const double idx = geo(inv_dx, i);
-        const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i);
-        const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i);
-        const double* a = alpha.data();
-        const double ax_plus = 0.5 * (a[c] + a[c + 1]), ax_minus = 0.5 * (a[c - 1] + a[c]);
-        const double ay_plus = 0.5 * (a[c] + a[c + sx]), ay_minus = 0.5 * (a[c - sx] + a[c]);
-        const double pc = p.data()[c];
-        double rhs[4];
-        for (int k = 0; k < 4; ++k) {
-          rhs[k] = -(fx[k][kx + 1] - fx[k][kx]) * idx - (fy[k][ky + nfy] - fy[k][ky]) * idy +
-                   source[k].data()[c];
-        }
-        rhs[1] += pc * (ax_plus - ax_minus) * idx;
-        rhs[2] += pc * (ay_plus - ay_minus) * idy;
-        double q[4];
-        for (int k = 0; k < 4; ++k) {
-          q[k] = c_old * U0[k].data()[c] + c_new * (U[k].data()[c] + dt * rhs[k]);
-          U[k].data()[c] = q[k];
-        }
-        const double r = q[0] / a[c], uu = q[1] / q[0], vv = q[2] / q[0];
-        rho.data()[c] = r;
-        u.data()[c] = uu;
-        v.data()[c] = vv;
-        e_row[i] = q[3] / q[0] - 0.5 * (uu * uu + vv * vv);
-        guess_row[i] = T.data()[c];
+      const int i0 = row_lo[static_cast<std::size_t>(j)], i1 = row_hi[static_cast<std::size_t>(j)];
+      fault_i[static_cast<std::size_t>(j)] = -1;
+      fault_kind[static_cast<std::size_t>(j)] = CellFault::None;
+      if (i1 <= i0) continue;
+      const std::size_t c = at(i0, j);
+      const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i0);
+      const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i0);
+      StageRow r{};
+      for (int k = 0; k < 4; ++k) {
+        r.U0[k] = U0[k].data() + c;
+        r.U[k] = U[k].data() + c;
+        r.source[k] = source[k].data() + c;
+        r.fx[k] = fx[k].data() + kx;
+        r.fy_below[k] = fy[k].data() + ky;
+        r.fy_above[k] = fy[k].data() + ky + nfy;
       }
-      th.temperatures(e_row, guess_row, T.data() + c0, nx);
-      int first_fault = -1;
-      CellFault kind = CellFault::None;
-      for (int i = 0; i < nx; ++i) {
-        const std::size_t c = c0 + static_cast<std::size_t>(i);
-        const double pp = rho.data()[c] * R * T.data()[c];
-        p.data()[c] = pp;
-        const CellFault f = classify(c, pp);
-        if (f != CellFault::None && first_fault < 0) {
-          first_fault = i;
-          kind = f;
-        }
-      }
-      fault_i[static_cast<std::size_t>(j)] = first_fault;
-      fault_kind[static_cast<std::size_t>(j)] = kind;
+      r.fx_pressure = fx_pressure.data() + kx;
+      r.fy_pressure_below = fy_pressure.data() + ky;
+      r.fy_pressure_above = fy_pressure.data() + ky + nfy;
+      r.alpha = alpha.data() + c;
+      r.alpha_below = alpha.data() + c - sx;
+      r.alpha_above = alpha.data() + c + sx;
+      r.inv_dx = inv_dx.data() + static_cast<std::size_t>(i0 + ng);
+      r.inv_dy = geo(inv_dy, j);
+      r.gas_constant = R;
+      r.rho = rho.data() + c;
+      r.u = u.data() + c;
+      r.v = v.data() + c;
+      r.p = p.data() + c;
+      r.T = T.data() + c;
+      r.n = i1 - i0;
+      save_step_start(j, i0, i1);
+      const int bad = stage_update_row(th, r, stage_scratch(), dt, c_new);
+      if (bad >= 0) record_fault(j, i0 + bad);
     }
+  }
+
+  /// Saves U0 = U for the cells of [i0, i1) not saved yet this step. A cell outside the hull
+  /// was not updated this step, so its U is still the step-start state.
+  void save_step_start(int j, int i0, int i1) {
+    const auto k = static_cast<std::size_t>(j);
+    int lo = saved_lo[k], hi = saved_hi[k];
+    auto copy = [&](int a, int b) {
+      if (b <= a) return;
+      const std::size_t c = at(a, j), n = static_cast<std::size_t>(b - a);
+      for (int q = 0; q < 4; ++q) std::copy_n(U[q].data() + c, n, U0[q].data() + c);
+    };
+    if (lo >= hi) {
+      copy(i0, i1);
+      lo = i0;
+      hi = i1;
+    } else {
+      copy(std::min(lo, i0), lo);
+      copy(hi, std::max(hi, i1));
+      lo = std::min(lo, i0);
+      hi = std::max(hi, i1);
+    }
+    saved_lo[k] = lo;
+    saved_hi[k] = hi;
+  }
+
+  /// Which check cell (i, j) failed, for the message.
+  void record_fault(int j, int i) {
+    const std::size_t c = at(i, j);
+    fault_i[static_cast<std::size_t>(j)] = i;
+    fault_kind[static_cast<std::size_t>(j)] = classify(c, p.data()[c]);
+  }
+
+  /// Per row (ghost rows included) the cells at each end that rest at that end's reference
+  /// state; then per interior row the cells a stage must update (rest_ranges.hpp). Runs inside
+  /// the stage's parallel region after the ghosts were filled.
+  void compute_active_ranges() {
+    if (!skip_resting) return;
+#pragma omp single
+    {
+      left_reference = rest_reference_of(at(0, ny - 1));
+      right_reference = rest_reference_of(at(nx - 1, ny - 1));
+    }
+    const int cells = nx + 2 * ng;
+#pragma omp for schedule(static)
+    for (int jr = -ng; jr < ny + ng; ++jr) {
+      const std::size_t c = at(-ng, jr);
+      const RowView row{u.data() + c, v.data() + c, p.data() + c, T.data() + c, cells};
+      const auto k = static_cast<std::size_t>(jr + ng);
+      rest_to[k] = resting_prefix(row, left_reference) - 1 - ng;
+      rest_from[k] = cells - resting_suffix(row, right_reference) - ng;
+    }
+#pragma omp for schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      const ActiveRange r = active_range(rest_to.data() + j, rest_from.data() + j, 2 * ng + 1, source_rows[k], nx);
+      row_lo[k] = r.lo;
+      row_hi[k] = r.hi;
+    }
+  }
+
+  /// Where each row has sources this step (they are held constant over the step).
+  void find_source_rows() {
+    if (!skip_resting) return;
+#pragma omp parallel for if (threaded) schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      const std::size_t c = at(0, j);
+      const double* const rows[4] = {source[0].data() + c, source[1].data() + c, source[2].data() + c,
+                                     source[3].data() + c};
+      source_rows[static_cast<std::size_t>(j)] = source_extent(rows, nx);
+    }
+  }
+
+  RestReference rest_reference_of(std::size_t c) const {
+    RestReference r;
+    r.valid = u.data()[c] == 0.0 && v.data()[c] == 0.0;
+    r.p = p.data()[c];
+    r.T = T.data()[c];
+    return r;
   }
 
   void fill_ghosts_parallel() {
@@ -444,15 +573,17 @@ struct GasSolver::Impl {
   }
 
   template <class Th>
-  void stage(const Th& th, double dt, double c_old, double c_new) {
+  void stage(const Th& th, double dt, double c_new) {
 #pragma omp parallel if (threaded)
     {
       fill_ghosts_parallel();
+      compute_active_ranges();
       if (viscous) compute_transport(th);
       compute_x_fluxes(th);
       compute_y_fluxes(th);
-      update(th, dt, c_old, c_new);
+      update(th, dt, c_new);
     }
+    for (int j = 0; j < ny; ++j) cell_updates += row_hi[static_cast<std::size_t>(j)] - row_lo[static_cast<std::size_t>(j)];
     throw_on_fault();
   }
 
@@ -471,7 +602,7 @@ struct GasSolver::Impl {
             << ", a rho v = " << U[2].data()[c] << ", a E = " << U[3].data()[c] << ")";
           break;
         case CellFault::Density:
-          m << "density rho = " << rho.data()[c] << " kg/m^3 is not positive";
+          m << "density rho = " << rho.data()[c] << " kg/m^3 (a rho = " << U[0].data()[c] << ") is not positive";
           break;
         default:
           m << "pressure p = " << p.data()[c] << " Pa is not positive (T = " << T.data()[c] << " K)";
@@ -488,10 +619,66 @@ struct GasSolver::Impl {
     {
 #pragma omp for schedule(static)
       for (int j = 0; j < ny; ++j) {
-        for (int i = 0; i < nx; ++i) (void)primitive_from_conserved(th, at(i, j));
+        const StageScratch sc = stage_scratch();
+        for (int i = 0; i < nx; ++i) sc.changed[i] = 1.0;
+        (void)primitives_row(th, primitive_row(j, 0, nx), sc);
       }
       fill_ghosts_parallel();
     }
+  }
+
+  PrimitiveRow primitive_row(int j, int i0, int i1) {
+    const std::size_t c = at(i0, j);
+    return {{U[0].data() + c, U[1].data() + c, U[2].data() + c, U[3].data() + c},
+            alpha.data() + c,
+            R,
+            rho.data() + c,
+            u.data() + c,
+            v.data() + c,
+            p.data() + c,
+            T.data() + c,
+            i1 - i0};
+  }
+
+  /// See GasSolver::change_porosity.
+  template <class Th>
+  void change_porosity(const Th& th, const Field2D& alpha_new, int j0, int j1) {
+    j0 = std::max(j0, 0);
+    j1 = std::min(j1, ny);
+#pragma omp parallel if (threaded)
+    {
+#pragma omp for schedule(static)
+      for (int j = j0; j < j1; ++j) {
+        const StageScratch sc = stage_scratch();
+        int first = nx, last = -1;
+        for (int i = 0; i < nx; ++i) {
+          const std::size_t c = at(i, j);
+          const double a_new = alpha_new.data()[c], a_old = alpha.data()[c];
+          sc.changed[i] = 0.0;
+          if (a_new == a_old) continue;
+          // alpha rho and alpha rho u are kept; the internal energy follows the isentropic
+          // compression by the volume the particles took or gave back: to first order exactly
+          // the -p d(alpha_g) work of eq. (3), and unlike the linear form it cannot drive the
+          // internal energy negative when alpha_g changes by a large fraction in one step.
+          const double m = U[0].data()[c], mx = U[1].data()[c], my = U[2].data()[c];
+          const double kinetic = 0.5 * (mx * mx + my * my) / m;
+          const double g = th.gamma(T.data()[c]);
+          U[3].data()[c] = kinetic + (U[3].data()[c] - kinetic) * std::pow(a_old / a_new, g - 1.0);
+          alpha.data()[c] = a_new;
+          sc.changed[i] = 1.0;
+          first = std::min(first, i);
+          last = i;
+        }
+        if (last < first) continue;
+        StageScratch shifted = sc;
+        shifted.changed = sc.changed + first;
+        const int bad = primitives_row(th, primitive_row(j, first, last + 1), shifted);
+        if (bad >= 0) record_fault(j, first + bad);
+      }
+    }
+    fill_porosity_ghosts();
+#pragma omp parallel if (threaded)
+    fill_ghosts_parallel();
   }
 
   /// Checks the current primitives (as left by the last step or refresh_primitives(), e.g.
@@ -508,7 +695,7 @@ struct GasSolver::Impl {
         for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(U[k].data()[c]);
         if (!finite) {
           kind = CellFault::NotFinite;
-        } else if (!(rho.data()[c] > 0.0)) {
+        } else if (!(rho.data()[c] > 0.0) || !(U[0].data()[c] > 0.0)) {
           kind = CellFault::Density;
         } else if (!(p.data()[c] > 0.0)) {
           kind = CellFault::Pressure;
@@ -526,10 +713,12 @@ struct GasSolver::Impl {
     check_current_state();
     ensure_scratch();
     fill_porosity_ghosts();
-    for (int k = 0; k < 4; ++k) U0[k].raw() = U[k].raw();  // same size: no allocation
-    stage(th, dt, 0.0, 1.0);
-    stage(th, dt, 0.75, 0.25);
-    stage(th, dt, 1.0 / 3.0, 2.0 / 3.0);
+    find_source_rows();
+    std::fill(saved_lo.begin(), saved_lo.end(), 0);
+    std::fill(saved_hi.begin(), saved_hi.end(), 0);
+    stage(th, dt, 1.0);
+    stage(th, dt, 0.25);
+    stage(th, dt, 2.0 / 3.0);
 #pragma omp parallel if (threaded)
     fill_ghosts_parallel();
   }
@@ -574,15 +763,14 @@ struct GasSolver::Impl {
           const double coord = ic.axis == 'y' ? grid.y().center(j) : grid.x().center(i);
           s = coord < ic.position ? below : above;
         }
-        conserved_from_primitive(th, i, j, s);
-        (void)primitive_from_conserved(th, at(i, j));
+        set_cell_state(th, i, j, s);
       }
     }
     record_inflow_states();  // also fills the ghosts
   }
 
   PrimitiveState state_at(int i, int j) const {
-    return {rho(i, j), u(i, j), v(i, j), p(i, j)};
+    return {rho(i, j), u(i, j), v(i, j), p(i, j), T(i, j)};
   }
 
   void record_inflow_states() {
@@ -661,6 +849,25 @@ void GasSolver::refresh_primitives() {
 }
 
 Field2D& GasSolver::porosity() { return impl_->alpha; }
+
+long long GasSolver::cell_updates() const { return impl_->cell_updates; }
+
+void GasSolver::initialize_porosity(const Field2D& alpha_g) {
+  Impl& m = *impl_;
+  for (int j = 0; j < m.ny; ++j) {
+    for (int i = 0; i < m.nx; ++i) {
+      const double a = alpha_g(i, j);
+      const double scale = a / m.alpha(i, j);
+      for (int k = 0; k < 4; ++k) m.U[static_cast<std::size_t>(k)](i, j) *= scale;
+      m.alpha(i, j) = a;
+    }
+  }
+  m.fill_porosity_ghosts();
+}
+
+void GasSolver::change_porosity(const Field2D& alpha_g, int j0, int j1) {
+  std::visit([&](const auto& th) { impl_->change_porosity(th, alpha_g, j0, j1); }, impl_->thermo);
+}
 
 Field2D& GasSolver::source(int k) { return impl_->source[static_cast<std::size_t>(k)]; }
 

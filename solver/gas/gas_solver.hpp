@@ -48,6 +48,10 @@ class GasSolver {
   GasPrimitives primitives() const;
   GasTotals totals() const;
 
+  /// Cell-stage updates done since construction (3 per cell and step without skipping;
+  /// fewer where resting cells were skipped). For benchmarks and tests.
+  long long cell_updates() const;
+
   /// Sound speed at cell (i, j) of the current state (for Mach number output).
   double sound_speed(int i, int j) const;
 
@@ -57,13 +61,19 @@ class GasSolver {
   const Field2D& conserved(int k) const;
   void refresh_primitives();
 
-  /// Porosity alpha_g per cell (1 by default; read before initialize() builds the state).
-  /// The coupling writes the interior; ghosts are refilled at every step. The conserved
-  /// variables carry the factor alpha_g and eq. (1) has no mass source, so when particles
-  /// move: write the new alpha_g, keep conserved(0..2), apply the -p d(alpha_g)/dt work of
-  /// eq. (3) (to conserved(3) directly or through source(3)), then refresh_primitives()
-  /// (rho = (alpha rho)/alpha follows).
+  /// Porosity alpha_g per cell (1 by default). Read-only use by the coupling: it changes
+  /// the porosity through initialize_porosity() or change_porosity().
   Field2D& porosity();
+
+  /// Gives the initial state its porosity: every interior cell takes alpha_g(i, j), its
+  /// conserved variables rescaled so that the primitive state stays exactly what it was.
+  void initialize_porosity(const Field2D& alpha_g);
+
+  /// The particles moved (eqs. 1-3 with a time-dependent alpha_g): cells of interior rows
+  /// [j0, j1) whose porosity differs from alpha_g(i, j) take it with their alpha rho and
+  /// alpha rho u kept and the internal energy changed by the isentropic compression (the
+  /// -p d(alpha_g)/dt work of eq. 3); only those cells' primitives are recomputed.
+  void change_porosity(const Field2D& alpha_g, int j0, int j1);
 
   /// External volumetric sources added to d(conserved(k))/dt (per m^3, e.g. -f_p, -s_p - q_p
   /// of eqs. 2-3); zero by default, held constant over one step(). k as in conserved().

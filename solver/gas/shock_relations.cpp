@@ -1,6 +1,7 @@
 #include "solver/gas/shock_relations.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -53,7 +54,7 @@ ShockJump normal_shock(const PrimitiveState& pre, double mach, const ThermoConfi
   if (!(mach > 1.0)) throw std::invalid_argument("normal_shock: Mach number must exceed 1");
   if (axis != 'x' && axis != 'y') throw std::invalid_argument("normal_shock: axis must be 'x' or 'y'");
   const double R = thermo.gas_constant;
-  const double T1 = pre.p / (pre.rho * R);
+  const double T1 = temperature_of(pre, R);
   const double un1 = axis == 'x' ? pre.u : pre.v;
 
   double c1 = 0.0, r = 0.0, p2 = 0.0;
@@ -74,6 +75,7 @@ ShockJump normal_shock(const PrimitiveState& pre, double mach, const ThermoConfi
   const double un2 = W - w1 / r;         // lab normal velocity behind
   ShockJump jump;
   jump.post = pre;
+  jump.post.T = std::numeric_limits<double>::quiet_NaN();  // the post-shock T follows p = rho R T
   jump.post.rho = pre.rho * r;
   jump.post.p = p2;
   (axis == 'x' ? jump.post.u : jump.post.v) = un2;

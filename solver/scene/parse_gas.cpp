@@ -16,6 +16,7 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
     // p = rho R T (eq. 4) holds for both thermodynamic models.
     const double T = t.required_number("T", Range::positive());
     s.rho = s.p / (thermo.gas_constant * T);
+    s.T = T;  // kept exactly: p / (rho R) would differ from it in the last bit
   }
   t.finish();
   return s;

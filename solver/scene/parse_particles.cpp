@@ -99,6 +99,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
 
   dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));
   dem.skin = t.number("skin", dem.skin, Range::open_closed(0.0, 1.0));
+  dem.fast_skin_substeps = t.number("fast_skin_substeps", dem.fast_skin_substeps, Range::non_negative());
   const bool gravity = t.boolean("gravity", false);
   const double g = t.number("g", 9.81, Range::non_negative());
   dem.gravity_x = 0.0;

@@ -10,6 +10,7 @@ void parse_run(TableReader t, RunConfig& run) {
   run.end_time = t.required_number("end_time", Range::positive());
   run.max_steps = t.integer("max_steps", 0, 0, 1'000'000'000'000LL);
   run.progress_interval = t.number("progress_interval", run.progress_interval, Range::non_negative());
+  run.skip_at_rest = t.boolean("skip_at_rest", run.skip_at_rest);
   t.finish();
 }
 

@@ -18,6 +18,9 @@ struct RunConfig {
   double end_time = 1e-3;          ///< s, simulated
   long long max_steps = 0;         ///< 0: unlimited
   double progress_interval = 2.0;  ///< s of wall time between progress lines
+  /// Skip gas cells and parcels that are exactly at rest (bitwise the same result; off only
+  /// to check that, or to time the difference).
+  bool skip_at_rest = true;
 };
 
 /// A group of parcels chosen by where they started (paper Figs. 10 and 12).

@@ -19,7 +19,9 @@ std::string fmt_number(double v) {
 
 Simulation::Simulation(const Scene& scene)
     : scene_(scene), grid_(scene.grid.x, scene.grid.y, kGhostLayers) {
-  gas_ = std::make_unique<GasSolver>(grid_, scene_.gas);
+  GasConfig gas_config = scene_.gas;
+  gas_config.skip_resting_cells = scene_.run.skip_at_rest;
+  gas_ = std::make_unique<GasSolver>(grid_, gas_config);
   gas_->initialize(scene_.initial);
   if (scene_.particles.enabled) {
     parcels_ = std::make_unique<ParcelSystem>(make_layer_system(scene_.particles));
@@ -82,15 +84,34 @@ std::vector<std::string> Simulation::enabled_effects() const {
     << " N/m, h " << d.contact.damping << " N s/m)";
   e.push_back(s.str());
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)" : "coupling: one-way (gas does not feel the particles)");
-  if (c.drag) e.push_back(std::string("drag: Clift-Gauvin") + (c.compressibility_correction ? " x Parmar xi_1" : "") +
-                          (c.volume_fraction.kind == aero::VolumeFractionCorrection::Kind::None ? "" : " x xi_2(alpha_g)"));
-  if (c.magnus) e.push_back(std::string("Magnus lift: C_LM = ") + fmt_number(c.magnus_coefficient) +
-                            (c.magnus_convention == aero::MagnusConvention::Paper ? " (paper convention)" : " (standard convention)"));
-  if (c.pressure_force) e.push_back("pressure-gradient force");
-  if (c.rotation_torque) e.push_back("rotational friction torque (Dennis et al.)");
-  if (c.heat_transfer) e.push_back("heat transfer (Ranz-Marshall) and particle temperature");
+  if (coupling_) {
+    for (const std::string& m : coupling_->model_descriptions()) e.push_back(m);
+  }
   if (d.gravity_y != 0.0) e.push_back("gravity on the parcels");
   return e;
+}
+
+std::string Simulation::work_summary() const {
+  std::ostringstream s;
+  const double full = 3.0 * static_cast<double>(grid_.interior_cells()) * static_cast<double>(step_ - first_step_);
+  s << "work: gas " << gas_->cell_updates() - first_cell_updates_ << " cell-stage updates ("
+    << (full > 0.0 ? 100.0 * static_cast<double>(gas_->cell_updates() - first_cell_updates_) / full : 0.0)
+    << " % of the full grid)";
+  if (parcels_) {
+    s << "; DEM " << parcels_->steps() - first_dem_steps_ << " sub-steps of " << parcels_->size() << " parcels, "
+      << parcels_->neighbour_rebuilds() - first_rebuilds_ << " neighbour rebuilds";
+  }
+  s.precision(3);
+  s << "\ntime: gas " << timings_.gas << " s";
+  if (parcels_) {
+    const auto& c = coupling_->timings();
+    const auto& d = parcels_->timings();
+    s << ", coupling sample " << c.sample << " s, relief " << c.relief << " s, deposit " << c.deposit
+      << " s, DEM contacts " << d.contacts << " s, integration " << d.integrate << " s, rebuilds " << d.rebuild
+      << " s";
+  }
+  s << ", observers " << timings_.observers << " s, checkpoints " << timings_.checkpoints << " s";
+  return s.str();
 }
 
 double Simulation::advance(double dt_max) {
@@ -102,6 +123,7 @@ double Simulation::advance(double dt_max) {
   }
   try {
     if (parcels_) coupling_->advance(*gas_, *parcels_, dt);
+    const ScopedTimer t(timings_.gas);
     gas_->step(dt);
   } catch (const NumericalFailure& f) {
     std::ostringstream s;
@@ -131,6 +153,10 @@ void Simulation::run(const std::string& output_dir) {
     next_checkpoint = static_cast<long long>(std::floor(time_ / checkpoint_interval)) + 1;
   }
 
+  first_step_ = step_;
+  first_cell_updates_ = gas_->cell_updates();
+  first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
+  first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
   // A restarted run's first frame is the restored state (the segment's start).
   for (auto& o : observers_) o->on_start(view(output_dir));
   double dt = 0.0;
@@ -140,15 +166,19 @@ void Simulation::run(const std::string& output_dir) {
     if (interval > 0.0) target = std::min(target, static_cast<double>(next_output_) * interval);
     dt = advance(target - time_);
     const StateView v = view(output_dir);
-    for (auto& o : observers_) o->on_step(v);
-    if (interval > 0.0 && time_ >= static_cast<double>(next_output_) * interval * (1.0 - 1e-12) &&
-        time_ < end * (1.0 - 1e-14)) {
-      for (auto& o : observers_) o->on_output(v);
-      ++next_output_;
+    {
+      const ScopedTimer t(timings_.observers);
+      for (auto& o : observers_) o->on_step(v);
+      if (interval > 0.0 && time_ >= static_cast<double>(next_output_) * interval * (1.0 - 1e-12) &&
+          time_ < end * (1.0 - 1e-14)) {
+        for (auto& o : observers_) o->on_output(v);
+        ++next_output_;
+      }
     }
     if (checkpoint_ && checkpoint_interval > 0.0 &&
         time_ >= static_cast<double>(next_checkpoint) * checkpoint_interval * (1.0 - 1e-12) &&
         time_ < end * (1.0 - 1e-14)) {
+      const ScopedTimer t(timings_.checkpoints);
       checkpoint_(*this);
       next_checkpoint = static_cast<long long>(std::floor(time_ / checkpoint_interval)) + 1;
     }

@@ -65,6 +65,15 @@ class Simulation {
   const ParcelSystem* parcels() const { return parcels_.get(); }
   const GasParticleCoupling* coupling() const { return coupling_.get(); }
 
+  /// What the run computed (gas cell-stage updates against the full grid, DEM sub-steps and
+  /// neighbour rebuilds) and where the wall time went, for the log.
+  std::string work_summary() const;
+  /// Wall seconds of run() by phase (the coupling's and the DEM's from their own timers).
+  struct Timings {
+    double gas = 0.0, observers = 0.0, checkpoints = 0.0;
+  };
+  const Timings& timings() const { return timings_; }
+
   /// The physical effects this scene switches on, one short phrase each (for `dustlift info`).
   std::vector<std::string> enabled_effects() const;
 
@@ -80,6 +89,9 @@ class Simulation {
   double time_ = 0.0;
   long long step_ = 0;
   long long next_output_ = 1;
+  Timings timings_;
+  // Counters at the start of run(), for work_summary().
+  long long first_step_ = 0, first_cell_updates_ = 0, first_dem_steps_ = 0, first_rebuilds_ = 0;
 };
 
 /// Ghost layers the gas scheme needs (MUSCL: 2).

@@ -80,13 +80,13 @@ Snapshot Simulation::snapshot() const {
   s.f64["dem/inv_inertia_real"] = in.inv_inertia_real;
   s.f64["dem/x_build"] = in.x_build;
   s.f64["dem/y_build"] = in.y_build;
+  s.f64["dem/half_skin"] = in.half_skin;
   s.i8["dem/wall_mask"].assign(in.wall_mask.begin(), in.wall_mask.end());
   s.f64["dem/time"] = {in.time};
   s.f64["dem/gravity"] = {in.gravity_x, in.gravity_y};
   s.i64["dem/needs_rebuild"] = {in.needs_rebuild ? 1 : 0};
   s.i64["dem/steps"] = {in.steps};
   s.i64["dem/rebuilds"] = {in.rebuilds};
-  s.i64["dem/flags"] = {p.external_forces ? 1 : 0, p.integrate_temperature ? 1 : 0};
   const GasParticleCoupling::CarriedState c = coupling_->carried_state();
   s.f64["coupling/alpha_p"] = c.alpha_p;
   s.i64["coupling/rows_touched"] = {c.rows_touched};
@@ -144,13 +144,15 @@ void Simulation::restore(const Snapshot& s) {
     in.gravity_x = gravity[0];
     in.gravity_y = gravity[1];
     in.needs_rebuild = find(s.i64, "dem/needs_rebuild", 1)[0] != 0;
+    // Checkpoints before per-parcel skins have none: the list is then rebuilt at the first step.
+    if (const auto hs = s.f64.find("dem/half_skin"); hs != s.f64.end() && hs->second.size() == n) {
+      in.half_skin = hs->second;
+    } else {
+      in.needs_rebuild = true;
+    }
     in.steps = find(s.i64, "dem/steps", 1)[0];
     in.rebuilds = find(s.i64, "dem/rebuilds", 1)[0];
-    const auto& flags = find(s.i64, "dem/flags", 2);
-    if ((flags[0] != 0) != p.external_forces || (flags[1] != 0) != p.integrate_temperature) {
-      throw SnapshotError("dem/flags do not match the scene's coupling");
-    }
-    // Ids must be a permutation of 0..n-1 (the coupling indexes its arrays by id).
+    // Ids must be a permutation of 0..n-1 (they name the parcels in the outputs).
     std::vector<char> seen(n, 0);
     for (std::int32_t i : restored.id) {
       if (i < 0 || static_cast<std::size_t>(i) >= n || seen[static_cast<std::size_t>(i)]) {

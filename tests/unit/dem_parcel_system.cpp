@@ -1,4 +1,4 @@
-// ParcelSystem mechanics: sub-stepping API, external force parts, temperature, and the
+// ParcelSystem mechanics: sub-stepping API, the gas forcing (exact discrete solutions), and the
 // contact history surviving neighbour rebuilds and re-sorting.
 #include <gtest/gtest.h>
 
@@ -23,6 +23,26 @@ DemConfig open_space() {
 
 }  // namespace
 
+/// Attaches the gas-forcing columns to s and returns the forcing (all effects off).
+GasForcing attach_forcing(ParcelSystem& s) {
+  GasForcing f;
+  auto c = [&](const char* name) { return s.attach_column({name, "", false, false}); };
+  f.gas_u = c("gas_u");
+  f.gas_v = c("gas_v");
+  f.gas_rotation = c("gas_rotation");
+  f.gas_temperature = c("gas_T");
+  f.drag_coefficient = c("K");
+  f.magnus_coefficient = c("M");
+  f.torque_coefficient = c("kappa");
+  f.heat_coefficient = c("H");
+  f.impulse_x = c("jx");
+  f.impulse_y = c("jy");
+  f.work = c("work");
+  f.heat_in = c("heat");
+  f.relative_rotation = c("w_rel");
+  return f;
+}
+
 TEST(DemParcelSystem, AdvanceSubCyclesWithEquation18AndCallsTheHookEachSubStep) {
   ParcelSystem s(open_space());
   ParcelInit p;
@@ -32,32 +52,60 @@ TEST(DemParcelSystem, AdvanceSubCyclesWithEquation18AndCallsTheHookEachSubStep) 
   // Eq. (18): nu sqrt(m / max k) with the real-particle mass.
   EXPECT_NEAR(s.stable_time_step(), 0.1 * std::sqrt(m / 5e4), 1e-20);
   EXPECT_NEAR(s.stable_time_step(), 1.013e-8, 0.001e-8);
-  const double F = 1e-9, Q = 1e-6;  // N and W per real particle
+  GasForcing f = attach_forcing(s);
+  f.pressure = true;
+  f.heat = true;
+  s.set_gas_forcing(f);
+  const double F = 1e-9;  // N per real particle (the pressure-force columns)
+  s.pressure_fx[0] = F;
+  s.pressure_fy[0] = -2 * F;
+  const double H = 1e-9, Tg = 1300.0;  // W/K and K: Q = H (T_g - T)
+  s.column(f.heat_coefficient)[0] = H;
+  s.column(f.gas_temperature)[0] = Tg;
   int calls = 0;
   const double dt_cfd = 4.1e-7;  // a paper-like CFD step
-  s.external_forces = true;
-  s.integrate_temperature = true;
-  const int n = s.advance(dt_cfd, [&](ParcelSystem& sys, double) {
-    ++calls;
-    sys.drag_fx[0] = F;       // the coupling's parts: drag + Magnus + pressure in x
-    sys.magnus_fy[0] = 2 * F;
-    sys.pressure_fy[0] = -F;
-    sys.heat_rate[0] = Q;
-  });
+  const int n = s.advance(dt_cfd, [&](ParcelSystem&, double) { ++calls; });
   EXPECT_EQ(n, static_cast<int>(std::ceil(dt_cfd / s.stable_time_step())));
   EXPECT_EQ(calls, n);
   EXPECT_DOUBLE_EQ(s.time(), dt_cfd);
   // Constant force: symplectic Euler gives the exact velocity F t / m_real.
   EXPECT_NEAR(s.vx[0], F / m * dt_cfd, 1e-12 * F / m * dt_cfd);
-  EXPECT_NEAR(s.vy[0], F / m * dt_cfd, 1e-12 * F / m * dt_cfd);
-  // Eq. (7): m c dT/dt = Q.
-  // (up to the round-off of adding n small increments to 300 K: n ulp(300) = n 5.7e-14)
-  EXPECT_NEAR(s.temperature[0] - 300.0, Q * dt_cfd / (m * 1200.0), n * 6e-14);
-  // With external_forces off the parts are ignored (a DEM-only run).
-  s.external_forces = false;
-  const double v_before = s.vx[0];
-  s.step(s.stable_time_step());
-  EXPECT_EQ(s.vx[0], v_before);
+  EXPECT_NEAR(s.vy[0], -2 * F / m * dt_cfd, 1e-12 * F / m * dt_cfd);
+  // Eq. (7) with explicit sub-steps: T_n = T_g - (T_g - T_0) (1 - H dt / (m c))^n exactly.
+  const double dt = dt_cfd / n, r = 1.0 - H * dt / (m * 1200.0);
+  const double T_n = Tg - (Tg - 300.0) * std::pow(r, n);
+  EXPECT_NEAR(s.temperature[0], T_n, 1e-12 * 300.0);
+  // The heat taken from the gas is what the particle gained; the pressure force is not
+  // exchanged (the gas feels it through alpha grad p), so no impulse and no work.
+  EXPECT_NEAR(s.column(f.heat_in)[0], m * 1200.0 * (s.temperature[0] - 300.0), 1e-9 * m * 1200.0);
+  EXPECT_EQ(s.column(f.impulse_x)[0], 0.0);
+  EXPECT_EQ(s.column(f.work)[0], 0.0);
+  EXPECT_NEAR(s.heat_rate[0], H * (Tg - T_n) / r, 1e-9 * H * Tg) << "the last sub-step's Q";
+}
+
+TEST(DemParcelSystem, DragForcingRelaxesTheSlipAndSumsTheExchangeExactly) {
+  // F = K (u_g - v): v_n = u_g (1 - (1 - K dt / m)^n); the impulse taken from the gas is the
+  // momentum m v_n and its work, with the symplectic-Euler mean velocity, exactly m v_n^2 / 2.
+  ParcelSystem s(open_space());
+  s.add_parcel(ParcelInit{});
+  const double m = 980.0 * sphere_volume(100e-6);
+  GasForcing f = attach_forcing(s);
+  f.drag = true;
+  s.set_gas_forcing(f);
+  const double ug = 200.0, vg = -50.0, K = 4e-7;
+  s.column(f.gas_u)[0] = ug;
+  s.column(f.gas_v)[0] = vg;
+  s.column(f.drag_coefficient)[0] = K;
+  const double dt_cfd = 1e-6;
+  const int n = s.advance(dt_cfd);
+  const double r = 1.0 - K * (dt_cfd / n) / m;
+  EXPECT_NEAR(s.vx[0], ug * (1.0 - std::pow(r, n)), 1e-10 * ug);
+  EXPECT_NEAR(s.vy[0], vg * (1.0 - std::pow(r, n)), 1e-10 * ug);
+  EXPECT_NEAR(s.column(f.impulse_x)[0], m * s.vx[0], 1e-12 * m * ug);
+  EXPECT_NEAR(s.column(f.impulse_y)[0], m * s.vy[0], 1e-12 * m * ug);
+  const double ke = 0.5 * m * (s.vx[0] * s.vx[0] + s.vy[0] * s.vy[0]);
+  EXPECT_NEAR(s.column(f.work)[0], ke, 1e-10 * ke);
+  EXPECT_NEAR(s.drag_fx[0], K * (ug - s.vx[0]) / r, 1e-9 * K * ug) << "the last sub-step's drag";
 }
 
 TEST(DemParcelSystem, GravityAcceleratesEveryParcelAlike) {

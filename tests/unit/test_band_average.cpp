@@ -121,16 +121,30 @@ TEST(BandAverage, TableHasOneRowPerFilledBinAndIsWrittenAsCsv) {
   EXPECT_TRUE(std::filesystem::exists(dir / "series" / "series.h5"));
 }
 
-TEST(BandAverage, ArrivalTimesAreSetOnceWhenTheShockPassesTheInitialX) {
-  const std::vector<double> x0{0.0, 0.1, 0.2, 0.3};
-  std::vector<double> arrival(4, kNaN);
-  update_arrival_times(0.15, 1e-5, x0, arrival);
-  update_arrival_times(0.25, 2e-5, x0, arrival);
-  update_arrival_times(kNaN, 3e-5, x0, arrival);
-  EXPECT_EQ(arrival[0], 1e-5);
+TEST(BandAverage, ArrivalIsTheFirstSampleWhenTheShockStoodAtOrBeyondTheInitialX) {
+  ShockTrajectory t;
+  t.record(1e-5, 0.15);
+  t.record(2e-5, 0.25);
+  t.record(3e-5, kNaN);   // no shock found: ignored
+  t.record(4e-5, 0.22);   // a dip does not move the reach back
+  EXPECT_EQ(t.arrival_time(0.0), 1e-5);
+  EXPECT_EQ(t.arrival_time(0.1), 1e-5);
+  EXPECT_EQ(t.arrival_time(0.15), 1e-5);
+  EXPECT_EQ(t.arrival_time(0.2), 2e-5);
+  EXPECT_EQ(t.arrival_time(0.25), 2e-5);
+  EXPECT_TRUE(std::isnan(t.arrival_time(0.3)));
+  EXPECT_EQ(t.reach(), 0.25);
+  EXPECT_EQ(t.times().size(), 2u);
+  // Only parcels in a band get an arrival time.
+  const std::vector<Band> bands{{"b", 0.05, 0.3, 0.0, 1.0}};
+  const std::vector<double> x0{0.0, 0.1, 0.2, 0.3}, y0{0.5, 0.5, 0.5, 0.5};
+  std::vector<double> arrival(4, 0.0);
+  band_arrival_times(t, bands, x0, y0, arrival);
+  EXPECT_TRUE(std::isnan(arrival[0]));
   EXPECT_EQ(arrival[1], 1e-5);
   EXPECT_EQ(arrival[2], 2e-5);
   EXPECT_TRUE(std::isnan(arrival[3]));
+  EXPECT_THROW(t.record(0.0, 0.5), std::invalid_argument);
 }
 
 }  // namespace

@@ -43,12 +43,12 @@ FaceState face_state(const Thermo& th, double rho, double u, double v, double p)
 template <class Thermo>
 void compare_with_pure_functions(const Thermo& th, const MusclSettings& m, const RowData& r, double nx, double ny) {
   const int faces = static_cast<int>(r.rho.size()) - 3;
-  std::vector<double> scratch(8 * static_cast<std::size_t>(faces)), out(4 * static_cast<std::size_t>(faces));
+  std::vector<double> scratch(8 * static_cast<std::size_t>(faces)), out(5 * static_cast<std::size_t>(faces));
   auto* s = scratch.data();
   const std::size_t n = static_cast<std::size_t>(faces);
   const FaceRowInput in{stencil(r.rho), stencil(r.u), stencil(r.v), stencil(r.p), r.alpha.data() + 1, r.alpha.data() + 2, faces};
   inviscid_flux_row(th, m, in, {s, s + n, s + 2 * n, s + 3 * n, s + 4 * n, s + 5 * n, s + 6 * n, s + 7 * n},
-                    {out.data(), out.data() + n, out.data() + 2 * n, out.data() + 3 * n}, nx, ny);
+                    {out.data(), out.data() + n, out.data() + 2 * n, out.data() + 3 * n, out.data() + 4 * n}, nx, ny);
   for (std::size_t f = 0; f < n; ++f) {
     auto rec = [&](const std::vector<double>& q) { return muscl_face(q[f], q[f + 1], q[f + 2], q[f + 3], m); };
     const FacePair fr = rec(r.rho), fu = rec(r.u), fv = rec(r.v), fp = rec(r.p);
@@ -56,9 +56,12 @@ void compare_with_pure_functions(const Thermo& th, const MusclSettings& m, const
                                        face_state(th, fr.right, fu.right, fv.right, fp.right), nx, ny);
     const double a = 0.5 * (r.alpha[f + 1] + r.alpha[f + 2]);
     const double want[4] = {a * F.mass, a * F.momentum_x, a * F.momentum_y, a * F.energy};
+    // The row keeps the face pressure apart (unweighted); the full momentum flux adds a p~ n.
+    const double p_face = out[4 * n + f];
+    const double got[4] = {out[f], out[n + f] + a * p_face * nx, out[2 * n + f] + a * p_face * ny, out[3 * n + f]};
     for (std::size_t k = 0; k < 4; ++k) {
       const double scale = std::abs(want[k]) + a * std::abs(F.mass) * 1e3 + 1e-300;
-      EXPECT_NEAR(out[k * n + f], want[k], 1e-12 * scale) << "face " << f << " component " << k;
+      EXPECT_NEAR(got[k], want[k], 1e-12 * scale) << "face " << f << " component " << k;
     }
   }
 }
@@ -116,18 +119,18 @@ TEST(FluxRows, NonPositiveReconstructedPressureFallsBackToFirstOrder) {
   const FacePair check = muscl_face(r.p[1], r.p[2], r.p[3], r.p[4], wild);
   const FacePair check0 = muscl_face(r.p[0], r.p[1], r.p[2], r.p[3], wild);
   ASSERT_TRUE(check.left <= 0.0 || check.right <= 0.0 || check0.left <= 0.0 || check0.right <= 0.0);
-  std::vector<double> scratch(16), out(8);
+  std::vector<double> scratch(16), out(10);
   auto* s = scratch.data();
   const FaceRowInput in{stencil(r.rho), stencil(r.u), stencil(r.v), stencil(r.p), r.alpha.data() + 1, r.alpha.data() + 2, 2};
   inviscid_flux_row(gas, wild, in, {s, s + 2, s + 4, s + 6, s + 8, s + 10, s + 12, s + 14},
-                    {out.data(), out.data() + 2, out.data() + 4, out.data() + 6}, 1.0, 0.0);
+                    {out.data(), out.data() + 2, out.data() + 4, out.data() + 6, out.data() + 8}, 1.0, 0.0);
   for (int f = 0; f < 2; ++f) {
     const FacePair pf = muscl_face(r.p[f], r.p[f + 1], r.p[f + 2], r.p[f + 3], wild);
     if (pf.left > 0.0 && pf.right > 0.0) continue;
     const auto st = [&](int c) { return FaceState{1.0, 0.0, 0.0, r.p[c], 3.5 * r.p[c], std::sqrt(1.4 * r.p[c])}; };
     const ConservedFlux first = slau2_flux(st(f + 1), st(f + 2), 1.0, 0.0);
     EXPECT_NEAR(out[static_cast<std::size_t>(f)], first.mass, 1e-14);
-    EXPECT_NEAR(out[2 + static_cast<std::size_t>(f)], first.momentum_x, 1e-14);
+    EXPECT_NEAR(out[2 + static_cast<std::size_t>(f)] + out[8 + static_cast<std::size_t>(f)], first.momentum_x, 1e-14);
     EXPECT_NEAR(out[6 + static_cast<std::size_t>(f)], first.energy, 1e-14);
   }
 }

@@ -1,0 +1,131 @@
+// SSP-RK3 stage update of a row segment (stage_update.hpp). Compiled with -fno-math-errno
+// -fno-trapping-math (solver/CMakeLists.txt) so that the select passes vectorise; neither
+// option changes a computed value.
+#include "solver/gas/stage_update.hpp"
+
+#include <cmath>
+
+#include "solver/gas/thermo.hpp"
+
+namespace dustlift {
+namespace {
+
+/// rhs = -(F_{i+1} - F_i)/dx - (G_above - G_below)/dy + S for one variable.
+[[gnu::noinline]] void divergence_pass(const double* __restrict fx, const double* __restrict fy_below,
+                                       const double* __restrict fy_above, const double* __restrict source,
+                                       const double* __restrict inv_dx, double inv_dy, double* __restrict rhs,
+                                       int n) {
+  for (int i = 0; i < n; ++i) {
+    rhs[i] = -(fx[i + 1] - fx[i]) * inv_dx[i] - (fy_above[i] - fy_below[i]) * inv_dy + source[i];
+  }
+}
+
+/// The well-balanced pressure part of a grad p along one direction: with p~ = p_i at both
+/// faces it is exactly zero whatever the face porosities.
+[[gnu::noinline]] void pressure_pass(const double* __restrict a_lo, const double* __restrict a,
+                                     const double* __restrict a_hi, const double* __restrict p_face_lo,
+                                     const double* __restrict p_face_hi, const double* __restrict p,
+                                     const double* __restrict inv_h, double* __restrict rhs, int n) {
+  for (int i = 0; i < n; ++i) {
+    const double a_plus = 0.5 * (a[i] + a_hi[i]), a_minus = 0.5 * (a_lo[i] + a[i]);
+    rhs[i] -= (a_plus * (p_face_hi[i] - p[i]) - a_minus * (p_face_lo[i] - p[i])) * inv_h[i];
+  }
+}
+
+/// U <- U0 + c (U - U0 + dt rhs); changed[i] becomes 1 where any component changed.
+[[gnu::noinline]] void combine_pass(const double* __restrict u0, double* __restrict u, const double* __restrict rhs,
+                                    double* __restrict changed, double dt, double c, int n) {
+  for (int i = 0; i < n; ++i) {
+    const double q = u0[i] + c * ((u[i] - u0[i]) + dt * rhs[i]);
+    changed[i] = q != u[i] ? 1.0 : changed[i];
+    u[i] = q;
+  }
+}
+
+/// rho, u, v and the specific internal energy of the new state.
+[[gnu::noinline]] void decode_pass(const double* __restrict m, const double* __restrict mx,
+                                   const double* __restrict my, const double* __restrict en,
+                                   const double* __restrict a, double* __restrict rho, double* __restrict u,
+                                   double* __restrict v, double* __restrict e, int n) {
+  for (int i = 0; i < n; ++i) {
+    const double uu = mx[i] / m[i], vv = my[i] / m[i];
+    rho[i] = m[i] / a[i];
+    u[i] = uu;
+    v[i] = vv;
+    e[i] = en[i] / m[i] - 0.5 * (uu * uu + vv * vv);
+  }
+}
+
+/// Writes the new primitives where the state changed; returns the first faulty cell or -1.
+[[gnu::noinline]] int commit_pass(const double* __restrict changed, const double* __restrict new_rho,
+                                  const double* __restrict new_u, const double* __restrict new_v,
+                                  const double* __restrict new_T, double R, const double* __restrict m,
+                                  const double* __restrict mx, const double* __restrict my,
+                                  const double* __restrict en, double* __restrict rho, double* __restrict u,
+                                  double* __restrict v, double* __restrict p, double* __restrict T, int n) {
+  int bad_count = 0;
+  for (int i = 0; i < n; ++i) {
+    const bool c = changed[i] != 0.0;
+    const double r = c ? new_rho[i] : rho[i];
+    const double t = c ? new_T[i] : T[i];
+    const double pp = c ? r * R * t : p[i];
+    rho[i] = r;
+    u[i] = c ? new_u[i] : u[i];
+    v[i] = c ? new_v[i] : v[i];
+    T[i] = t;
+    p[i] = pp;
+    // Finite conserved state, rho > 0, finite p > 0 (NaN fails every comparison).
+    const double sum = m[i] + mx[i] + my[i] + en[i];
+    const bool ok = (sum - sum == 0.0) && r > 0.0 && pp > 0.0 && pp - pp == 0.0;
+    bad_count += ok ? 0 : 1;
+  }
+  if (bad_count == 0) return -1;
+  for (int i = 0; i < n; ++i) {
+    const double sum = m[i] + mx[i] + my[i] + en[i];
+    if (!(std::isfinite(sum) && rho[i] > 0.0 && p[i] > 0.0 && std::isfinite(p[i]))) return i;
+  }
+  return -1;
+}
+
+}  // namespace
+
+template <class Thermo>
+int stage_update_row(const Thermo& th, const StageRow& r, const StageScratch& s, double dt, double c_new) {
+  const int n = r.n;
+  if (n <= 0) return -1;
+  for (int k = 0; k < 4; ++k) {
+    divergence_pass(r.fx[k], r.fy_below[k], r.fy_above[k], r.source[k], r.inv_dx, r.inv_dy, s.rhs[k], n);
+  }
+  pressure_pass(r.alpha - 1, r.alpha, r.alpha + 1, r.fx_pressure, r.fx_pressure + 1, r.p, r.inv_dx, s.rhs[1], n);
+  // The y-direction has one inverse height for the whole row: pass it as a constant array.
+  for (int i = 0; i < n; ++i) s.T[i] = r.inv_dy;
+  pressure_pass(r.alpha_below, r.alpha, r.alpha_above, r.fy_pressure_below, r.fy_pressure_above, r.p, s.T, s.rhs[2],
+                n);
+  for (int i = 0; i < n; ++i) s.changed[i] = 0.0;
+  for (int k = 0; k < 4; ++k) combine_pass(r.U0[k], r.U[k], s.rhs[k], s.changed, dt, c_new, n);
+  decode_pass(r.U[0], r.U[1], r.U[2], r.U[3], r.alpha, s.rho, s.u, s.v, s.e, n);
+  th.temperatures(s.e, r.T, s.T, n);
+  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[0], r.U[1], r.U[2], r.U[3], r.rho, r.u,
+                     r.v, r.p, r.T, n);
+}
+
+template <class Thermo>
+int primitives_row(const Thermo& th, const PrimitiveRow& r, const StageScratch& s) {
+  const int n = r.n;
+  if (n <= 0) return -1;
+  decode_pass(r.U[0], r.U[1], r.U[2], r.U[3], r.alpha, s.rho, s.u, s.v, s.e, n);
+  th.temperatures(s.e, r.T, s.T, n);
+  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[0], r.U[1], r.U[2], r.U[3], r.rho, r.u,
+                     r.v, r.p, r.T, n);
+}
+
+template int stage_update_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const StageRow&,
+                                                     const StageScratch&, double, double);
+template int stage_update_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const StageRow&, const StageScratch&,
+                                                   double, double);
+template int primitives_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const PrimitiveRow&,
+                                                   const StageScratch&);
+template int primitives_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const PrimitiveRow&,
+                                                 const StageScratch&);
+
+}  // namespace dustlift
