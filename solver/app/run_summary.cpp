@@ -1,5 +1,6 @@
 #include "solver/app/run_summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -48,19 +49,25 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
                          double lift_threshold) {
   const std::string h5 = (std::filesystem::path(folder) / "series" / "series.h5").string();
   RunResults r;
-  r.profile_time = r.shock_x = r.lifting_delay = kNaN;
+  r.profile_time = r.shock_x = r.lifting_delay = r.layer_top = kNaN;
   r.heights.assign(stations.size(), kNaN);
 
-  // The surface profile of the last output (rows of one time are consecutive).
-  std::vector<double> xs, hs;
+  // The surface profile of the last output, and the undisturbed top: the median height of
+  // the first output (t = 0), which is the layer's top to 0.1 cell whatever the arrangement
+  // (a settled bed's lies below the rectangle's y_max).
+  std::vector<double> xs, hs, first;
+  double layer_top = scene.particles.layer.y_max;
   if (const auto surface = read_if_present(h5, "surface_height"); surface && surface->rows() > 0) {
     const auto& time = surface->column(0);
     r.profile_time = time.back();
     for (std::size_t k = 0; k < surface->rows(); ++k) {
+      if (time[k] == time.front()) first.push_back(surface->column(2)[k]);
       if (time[k] != r.profile_time) continue;
       xs.push_back(surface->column(1)[k]);
       hs.push_back(surface->column(2)[k]);
     }
+    std::nth_element(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(first.size() / 2), first.end());
+    layer_top = r.layer_top = first[first.size() / 2];
     for (std::size_t s = 0; s < stations.size(); ++s) r.heights[s] = height_at_station(xs, hs, stations[s]);
   }
   // The shock when the surface profile was taken (the last sample at or before it).
@@ -69,7 +76,7 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
       if (!(shock->column(0)[k] > r.profile_time)) r.shock_x = shock->column(1)[k];
   }
   if (!xs.empty() && std::isfinite(r.shock_x)) {
-    r.lifting_delay = lifting_delay_distance(xs, hs, r.shock_x, scene.particles.layer.y_max, lift_threshold);
+    r.lifting_delay = lifting_delay_distance(xs, hs, r.shock_x, layer_top, lift_threshold);
   }
   for (const BandConfig& band : scene.output.bands) {
     std::vector<ForcePeak> peaks(kSummaryForceColumns.size(), ForcePeak{kNaN, kNaN});

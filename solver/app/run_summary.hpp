@@ -23,6 +23,7 @@ struct RunResults {
   double profile_time = 0.0;     ///< s, time of the last surface-height output (NaN: none)
   double shock_x = 0.0;          ///< m, shock position then, or at the end without particles (NaN: no shock series)
   double lifting_delay = 0.0;    ///< m, shock_x minus where the surface first rose (NaN: no lifting)
+  double layer_top = 0.0;        ///< m, the undisturbed top the rise is measured from
   std::vector<double> heights;   ///< m, h(x) at the end at each station (NaN where no particles)
   /// peaks[band][component], bands in scene order, components as kSummaryForceColumns;
   /// NaN where the band series is missing or empty.
@@ -30,7 +31,8 @@ struct RunResults {
 };
 
 /// Reads folder/series/series.h5. Stations in m; `lift_threshold` in m above the layer's
-/// top (scene.particles.layer.y_max). Missing series give NaN entries, not errors.
+/// undisturbed top, the median surface height of the first output (t = 0; without a
+/// surface series, scene.particles.layer.y_max). Missing series give NaN entries, not errors.
 RunResults summarise_run(const std::string& folder, const Scene& scene, const std::vector<double>& stations,
                          double lift_threshold);
 

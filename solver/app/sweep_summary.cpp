@@ -12,7 +12,8 @@ namespace {
 
 std::vector<SeriesColumn> numeric_columns(const Scene& base, const std::vector<double>& stations) {
   std::vector<SeriesColumn> c{{"run_index", "1"}, {"exit_status", "1"}, {"wall_time", "s"}, {"steps", "1"},
-                              {"end_time", "s"},  {"shock_x", "m"},     {"lifting_delay", "m"}};
+                              {"end_time", "s"},  {"shock_x", "m"},     {"lifting_delay", "m"},
+                              {"layer_top", "m"}};
   for (double x : stations) c.push_back({fmt::format("h_at_x{:.6g}", x), "m"});
   for (const BandConfig& band : base.output.bands) {
     for (const std::string& component : kSummaryForceColumns) {
@@ -52,7 +53,7 @@ void SweepSummary::add(const SweepRun& run, const RunOutcome& outcome, const Run
   auto result = [&](double v) { return ok ? v : nan; };
   std::vector<double> row{static_cast<double>(runs_.size() - 1), static_cast<double>(outcome.exit_code),
                           outcome.wall_seconds, static_cast<double>(outcome.steps), outcome.time,
-                          result(results.shock_x), result(results.lifting_delay)};
+                          result(results.shock_x), result(results.lifting_delay), result(results.layer_top)};
   for (double h : results.heights) row.push_back(result(h));
   for (const auto& band : results.peaks) {
     for (const ForcePeak& p : band) {

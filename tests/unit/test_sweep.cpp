@@ -2,7 +2,6 @@
 // whole sweeps through the CLI on scenes that take a fraction of a second per run.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,7 +9,6 @@
 
 #include "insitu/series_table.hpp"
 #include "solver/app/sweep.hpp"
-#include "solver/scene/scene.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "support/run_cli.hpp"
 
@@ -188,6 +186,8 @@ TEST(Sweep, TwoByTwoSweepWritesFoldersSeriesSummaryAndPlot) {
     EXPECT_NEAR(std::stod(row[column(h, "shock_x_m")]), shock_expected + 1e-3, 1e-3);
     // 20 us after the shock passed, no column of the layer has lifted 0.25 mm.
     EXPECT_EQ(row[column(h, "lifting_delay_m")], "nan");
+    // The undisturbed top (median h at t = 0) is the layer top within 0.1 cell (50 um).
+    EXPECT_NEAR(std::stod(row[column(h, "layer_top_m")]), 0.0, 0.05e-3);
     for (const char* station : {"h_at_x0.004_m", "h_at_x0.012_m"}) {
       EXPECT_NEAR(std::stod(row[column(h, station)]), 0.0, 0.05e-3) << station;
     }
