@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "insitu/lifting_delay.hpp"
+
 namespace dustlift {
 
 /// One axis of a sweep: keys that change together, each with its own list of values (TOML
@@ -21,7 +23,7 @@ struct SweepDefinition {
   std::vector<SweepAxis> axes;           ///< every combination of one value per axis is a run
   std::vector<std::string> overrides;    ///< --set for every run (before the varied keys)
   std::vector<double> stations;          ///< m, x of the h(x) columns; empty: output.surface_stations
-  double lift_threshold = 0.25e-3;       ///< m, rise above the layer top that counts as lifted
+  double lift_threshold = kDefaultLiftThreshold;  ///< m, rise above the layer top that counts as lifted
 };
 
 /// Splits a list of TOML values at the commas outside brackets, braces and quotes:
