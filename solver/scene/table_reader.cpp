@@ -35,6 +35,10 @@ std::string read_input_file(const std::string& path, const std::string& kind) {
   // A folder opens as a stream on Linux and reads as empty: name it instead.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a folder, not a " + kind);
+  // A device or pipe (/dev/zero as a layer file) could be read forever.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw SceneError(path + ": is not a regular file, not a " + kind);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open " + kind);
   std::ostringstream buf;

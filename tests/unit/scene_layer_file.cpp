@@ -178,6 +178,16 @@ TEST(LayerFile, BadFilesThroughTheCliExitWith2NamingFileLineAndColumnAndWriteNot
       {"no_parcels", "# header only\nx,y\n", "layer.csv:2:1: no parcel after the header"},
       {"no_file", nullptr, "layer.csv: cannot open layer file"},
   };
+  {
+    // A device is refused before it is read (reading /dev/zero would never end).
+    const auto dir = fresh_dir("layer_file_cli_device");
+    write_file(dir / "scene.toml", kScene);
+    const fs::path out = dir / "out";
+    const auto r = run_cli("run " + (dir / "scene.toml").string() + " --out " + out.string() +
+                           " --set particles.layer.file=/dev/zero");
+    expect_bad_input(r, "/dev/zero: is not a regular file, not a layer file", out, "device");
+    fs::remove_all(dir);
+  }
   for (const Case& c : cases) {
     const auto dir = fresh_dir(std::string("layer_file_cli_") + c.name);
     write_file(dir / "scene.toml", kScene);
