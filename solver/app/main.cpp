@@ -146,19 +146,23 @@ int main(int argc, char** argv) {
                   "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
                   "run.max_steps, run.progress_interval, output.*)");
   run->add_option("--out,-o", out_dir, "output folder (default: out/<run.name>)");
-  run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)");
+  // One value per --set/--vary, so a scene named after them is not taken for another value.
+  run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)")
+      ->allow_extra_args(false);
   run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
 
   auto* sweep_cmd = app.add_subcommand("sweep", "run every combination of scene overrides and summarise them");
   sweep_cmd->add_option("scene", scene_path, "scene file (TOML); replaces the study file's scene");
   sweep_cmd->add_option("--vary", varies,
-                        "key=v1,v2,... (one axis; repeatable); k1=a,b;k2=c,d changes keys together");
+                        "key=v1,v2,... (one axis; repeatable); k1=a,b;k2=c,d changes keys together")
+      ->allow_extra_args(false);
   sweep_cmd->add_option("--study", study_path, "study file (TOML: scene, [[vary]], set, stations, lift_threshold)");
   sweep_cmd->add_option("--out,-o", out_dir, "output folder: one sub-folder per run, summary.csv, summary.h5")
       ->required();
-  sweep_cmd->add_option("--set", overrides, "override a scene key in every run (repeatable)");
+  sweep_cmd->add_option("--set", overrides, "override a scene key in every run (repeatable)")->allow_extra_args(false);
   sweep_cmd->add_option("--stations", sweep.stations, "x (m) of the h(x) columns (default: output.surface_stations)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);
   sweep_cmd->add_option("--lift-threshold", sweep.lift_threshold,
                         fmt::format("m above the layer top that counts as lifted (default {:g})", kDefaultLiftThreshold))
       ->check(CLI::PositiveNumber);
@@ -167,7 +171,7 @@ int main(int argc, char** argv) {
 
   auto* info = app.add_subcommand("info", "print the resolved scene, enabled effects, grid and step estimate");
   info->add_option("scene", scene_path, "scene file (TOML)")->required();
-  info->add_option("--set", overrides, "override a scene key (repeatable)");
+  info->add_option("--set", overrides, "override a scene key (repeatable)")->allow_extra_args(false);
 
   try {
     app.parse(argc, argv);

@@ -238,10 +238,10 @@ TEST(Sweep, AFailedRunIsRecordedAndTheSweepGoesOn) {
   // as in Cli.NumericalFailureExitsWithCode3NamingStepCellAndVariable); the other finishes.
   const auto dir = fresh_dir("sweep_failure");
   const fs::path out = dir / "out";
-  const auto r = run_cli("sweep " + std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml --threads 1 --set run.end_time=2e-4"
-                         " --set \"initial.left={ rho = 1.0, p = 1e6 }\""
-                         " --vary \"initial.right={ rho = 0.125, p = 0.1 },{ rho = 1e-30, p = 1e-30 }\" --out " +
-                         out.string());
+  // The scene comes after the options here: each --set/--vary takes one value.
+  const auto r = run_cli("sweep --threads 1 --set run.end_time=2e-4 --set \"initial.left={ rho = 1.0, p = 1e6 }\""
+                         " --vary \"initial.right={ rho = 0.125, p = 0.1 },{ rho = 1e-30, p = 1e-30 }\" " +
+                         std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml --out " + out.string());
   EXPECT_EQ(r.exit_code, 3) << r.output;
   const auto rows = read_csv(out / "summary.csv");
   ASSERT_EQ(rows.size(), 3u) << r.output;
