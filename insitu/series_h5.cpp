@@ -176,4 +176,52 @@ void write_series_h5(const std::string& path, const SeriesTable& table) {
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
 }
 
+void write_string_column_h5(const std::string& path, const std::string& group, const std::string& name,
+                            const std::vector<std::string>& values) {
+  Handle file(open_or_create(path), H5Fclose, "open or create " + path);
+  const std::string group_name = "/" + group;
+  if (H5Lexists(file, group_name.c_str(), H5P_DEFAULT) <= 0) {
+    Handle created(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                   "create group " + group_name);
+  }
+  Handle g(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + group_name);
+  if (H5Lexists(g, name.c_str(), H5P_DEFAULT) > 0) check(H5Ldelete(g, name.c_str(), H5P_DEFAULT), "delete " + name);
+  std::size_t width = 1;
+  for (const auto& v : values) width = std::max(width, v.size());
+  std::string packed(width * values.size(), '\0');
+  for (std::size_t k = 0; k < values.size(); ++k) packed.replace(k * width, values[k].size(), values[k]);
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+  check(H5Tset_size(type, width), "string size");
+  check(H5Tset_strpad(type, H5T_STR_NULLPAD), "string pad");
+  const hsize_t rows = values.size();
+  Handle space(H5Screate_simple(1, &rows, nullptr), H5Sclose, "string column space");
+  Handle dataset(H5Dcreate2(g, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+                 "create dataset " + name);
+  if (rows > 0) check(H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "write " + name);
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
+}
+
+std::vector<std::string> read_string_column_h5(const std::string& path, const std::string& group,
+                                               const std::string& name) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error("no file " + path);
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + path);
+  const std::string dataset_path = "/" + group + "/" + name;
+  if (H5Lexists(file, ("/" + group).c_str(), H5P_DEFAULT) <= 0 || H5Lexists(file, dataset_path.c_str(), H5P_DEFAULT) <= 0)
+    throw std::runtime_error("no dataset " + dataset_path + " in " + path);
+  Handle dataset(H5Dopen2(file, dataset_path.c_str(), H5P_DEFAULT), H5Dclose, "open " + dataset_path);
+  Handle type(H5Dget_type(dataset), H5Tclose, "type of " + dataset_path);
+  Handle space(H5Dget_space(dataset), H5Sclose, "space of " + dataset_path);
+  const auto rows = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+  const std::size_t width = H5Tget_size(type);
+  std::string packed(rows * width, '\0');
+  if (rows > 0) check(H5Dread(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "read " + dataset_path);
+  std::vector<std::string> values;
+  for (std::size_t k = 0; k < rows; ++k) {
+    std::string v = packed.substr(k * width, width);
+    v.erase(v.find_last_not_of('\0') + 1);
+    values.push_back(v);
+  }
+  return values;
+}
+
 }  // namespace dustlift

@@ -47,7 +47,7 @@ class SurfaceHeightObserver final : public Observer {
       interior(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
     }
     const auto xc = interior_centers(grid.x());
-    const auto heights = dust_surface_height(interior_centers(grid.y()), alpha_p_,
+    const auto heights = dust_surface_height(grid.y().interior_faces(), alpha_p_,
                                              static_cast<std::size_t>(grid.nx()),
                                              options_.threshold);
     for (std::size_t i = 0; i < heights.size(); ++i)

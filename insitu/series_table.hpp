@@ -71,4 +71,14 @@ void write_series_h5(const std::string& path, const SeriesTable& table);
 /// std::runtime_error when the file or group is missing.
 SeriesTable read_series_h5(const std::string& path, const std::string& name);
 
+/// Writes a 1-D dataset of fixed-length strings /<group>/<name> into an HDF5 file (created
+/// if missing; the group too), replacing a dataset of that name. For text columns next to a
+/// series, e.g. the run names and override values of a sweep summary.
+void write_string_column_h5(const std::string& path, const std::string& group, const std::string& name,
+                            const std::vector<std::string>& values);
+
+/// Reads such a dataset back. Throws std::runtime_error when it is missing.
+std::vector<std::string> read_string_column_h5(const std::string& path, const std::string& group,
+                                               const std::string& name);
+
 }  // namespace dustlift

@@ -6,10 +6,11 @@
 
 namespace dustlift {
 
-std::vector<double> dust_surface_height(std::span<const double> y_centers,
+std::vector<double> dust_surface_height(std::span<const double> y_faces,
                                         std::span<const double> alpha_p, std::size_t nx,
                                         double threshold) {
-  const std::size_t ny = y_centers.size();
+  if (y_faces.size() < 2) throw std::invalid_argument("dust_surface_height: at least one cell (two faces) needed");
+  const std::size_t ny = y_faces.size() - 1;
   if (alpha_p.size() != nx * ny)
     throw std::invalid_argument("dust_surface_height: alpha_p must hold nx*ny values");
   std::vector<double> h(nx, std::numeric_limits<double>::quiet_NaN());
@@ -17,14 +18,9 @@ std::vector<double> dust_surface_height(std::span<const double> y_centers,
     for (std::size_t j = ny; j-- > 0;) {  // from the top down: the highest cell wins
       const double a = alpha_p[i + nx * j];
       if (!(a > threshold)) continue;
-      if (j + 1 == ny) {
-        h[i] = y_centers[j];
-      } else {
-        // alpha_p crosses the threshold between centre j (above) and j+1 (at or below).
-        const double above = alpha_p[i + nx * (j + 1)];
-        const double s = (a - threshold) / (a - above);
-        h[i] = y_centers[j] + s * (y_centers[j + 1] - y_centers[j]);
-      }
+      const double below = j > 0 ? alpha_p[i + nx * (j - 1)] : a;
+      const double fill = a / std::max(a, below);  // in (0, 1]
+      h[i] = y_faces[j] + fill * (y_faces[j + 1] - y_faces[j]);
       break;
     }
   }

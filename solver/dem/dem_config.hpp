@@ -3,15 +3,49 @@
 // Owned by the DEM module; parsed in solver/scene/parse_particles.cpp, where every
 // default below is also written into the resolved scene. Paper values: Table 2 and
 // physics-reference.md §3.6–§4; the garbled or missing items are documented in docs/dem.md.
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace dustlift {
 
-/// How the layer generator places parcels in the layer rectangle.
+/// How the layer generator places parcels in the layer rectangle (docs/dem.md, "Layer
+/// structures", says what each implies for contacts and force chains at t = 0).
 enum class LayerArrangement {
   Lattice,          ///< rectangular lattice, parcels at the site centres
   JitteredLattice,  ///< same lattice, each parcel moved randomly inside its free play
+  Columnar,         ///< floor(depth / D) rows touching vertically, columns spaced to the fraction
+  Hexagonal,        ///< offset rows (odd rows shifted by half a pitch), no contact
+  Settled,          ///< the jittered lattice, then settled under gravity and brought to rest
+  File,             ///< parcels read from a CSV file (DemConfig::layer_parcels)
+};
+
+/// Scene names of the arrangements (`[particles.layer] arrangement`).
+inline constexpr std::array<std::pair<std::string_view, LayerArrangement>, 6> kLayerArrangementNames{{
+    {"jittered_lattice", LayerArrangement::JitteredLattice},
+    {"lattice", LayerArrangement::Lattice},
+    {"columnar", LayerArrangement::Columnar},
+    {"hexagonal", LayerArrangement::Hexagonal},
+    {"settled", LayerArrangement::Settled},
+    {"file", LayerArrangement::File},
+}};
+
+inline std::string_view layer_arrangement_name(LayerArrangement a) {
+  for (const auto& [name, value] : kLayerArrangementNames)
+    if (value == a) return name;
+  return "?";
+}
+
+/// One parcel placed by a layer file (arrangement = file), SI units.
+struct PlacedParcel {
+  double x = 0.0, y = 0.0;      ///< m, centre
+  double diameter = 100e-6;     ///< m, parcel diameter
+  double vx = 0.0, vy = 0.0;    ///< m/s
+  double omega = 0.0;           ///< rad/s, counter-clockwise positive
+  double temperature = 300.0;   ///< K
 };
 
 /// Linear spring–dashpot contact law (Table 1), per REAL particle (§3.7).
@@ -32,6 +66,11 @@ struct LayerConfig {
   LayerArrangement arrangement = LayerArrangement::JitteredLattice;
   bool settle = false;                   ///< let the layer settle under gravity before t = 0
 };
+
+/// Whether the layer is settled under gravity before t = 0 (`settle`, or arrangement = settled).
+inline bool layer_settles(const LayerConfig& layer) {
+  return layer.settle || layer.arrangement == LayerArrangement::Settled;
+}
 
 /// The region the neighbour cells cover and its walls (axis-aligned planes at its edges).
 /// Parcels may leave the region; they are then binned into its edge cells (correct, slower).
@@ -60,6 +99,9 @@ struct DemConfig {
   double real_per_parcel = 0.0;          ///< 1/m (per metre of depth); 0: derived
 
   LayerConfig layer;
+  /// arrangement = file: the parcels, in file order. Parcel i holds
+  /// real_per_parcel (D_i / parcel_diameter)^2 real particles (eq. 11, n_xy^2 n_z).
+  std::vector<PlacedParcel> layer_parcels;
   ContactParams contact;                 ///< parcel–parcel
   ContactParams wall_contact;            ///< parcel–wall (defaults to `contact`)
   DemDomain domain;

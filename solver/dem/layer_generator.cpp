@@ -1,91 +1,28 @@
-// Dust layer generator (jittered lattice) and the scene's ParcelSystem factory.
+// The scene's ParcelSystem factory (generated layer or layer file) and settling under gravity.
 #include "solver/dem/layer_generator.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <stdexcept>
-#include <string>
+#include <sstream>
 
 #include "solver/dem/coarse_graining.hpp"
 
 namespace dustlift {
+namespace {
 
-double uniform_from_seed(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
-  return static_cast<double>(z >> 11) * 0x1.0p-53;
+ParcelInit parcel_of(const DemConfig& cfg, double x, double y, double n_real) {
+  ParcelInit p;
+  p.x = x;
+  p.y = y;
+  p.diameter = cfg.parcel_diameter;
+  p.real_diameter = cfg.particle_diameter;
+  p.density = cfg.density;
+  p.n_real = n_real;
+  p.temperature = cfg.initial_temperature;
+  return p;
 }
 
-LayerLattice plan_layer_lattice(const LayerConfig& layer, double parcel_d) {
-  const double width = layer.x_max - layer.x_min, height = layer.y_max - layer.y_min;
-  if (!(width > 0.0) || !(height > 0.0)) throw std::invalid_argument("layer rectangle is empty");
-  if (height < parcel_d || width < parcel_d) {
-    throw std::invalid_argument("layer is smaller than one parcel diameter");
-  }
-  LayerLattice best;
-  best.n_parcels = std::llround(layer.volume_fraction * width * height / disc_area(parcel_d));
-  if (best.n_parcels < 1) throw std::invalid_argument("layer holds no parcel at this fraction");
-  const int max_rows = static_cast<int>(std::floor(height / parcel_d));
-  double best_pitch = 0.0;
-  for (int rows = 1; rows <= max_rows; ++rows) {
-    const std::int64_t cols = (best.n_parcels + rows - 1) / rows;
-    const double px = width / static_cast<double>(cols), py = height / rows;
-    const double pitch = std::min(px, py);
-    if (pitch > best_pitch) {
-      best_pitch = pitch;
-      best.rows = rows;
-      best.cols = static_cast<int>(cols);
-      best.pitch_x = px;
-      best.pitch_y = py;
-    }
-  }
-  if (best_pitch < parcel_d) {
-    throw std::invalid_argument("areal fraction " + std::to_string(layer.volume_fraction) +
-                                " cannot be placed on a lattice without overlaps (max about 0.78)");
-  }
-  return best;
-}
-
-LayerPositions generate_layer(const LayerConfig& layer, double parcel_d) {
-  LayerPositions out;
-  out.lattice = plan_layer_lattice(layer, parcel_d);
-  const LayerLattice& L = out.lattice;
-  const std::int64_t sites = static_cast<std::int64_t>(L.rows) * L.cols;
-  std::uint64_t state = layer.seed;
-  // Which sites stay empty: the first (sites - n) of a seeded partial Fisher–Yates shuffle.
-  std::vector<char> empty(static_cast<std::size_t>(sites), 0);
-  {
-    std::vector<std::int64_t> idx(static_cast<std::size_t>(sites));
-    std::iota(idx.begin(), idx.end(), std::int64_t{0});
-    const std::int64_t n_empty = sites - L.n_parcels;
-    for (std::int64_t k = 0; k < n_empty; ++k) {
-      const auto r = k + static_cast<std::int64_t>(uniform_from_seed(state) * static_cast<double>(sites - k));
-      std::swap(idx[k], idx[std::min(r, sites - 1)]);
-      empty[idx[k]] = 1;
-    }
-  }
-  // Free play of a parcel inside its site (a hair less, so neighbours never touch).
-  const bool jitter = layer.arrangement == LayerArrangement::JitteredLattice;
-  const double play_x = jitter ? 0.999 * (L.pitch_x - parcel_d) : 0.0;
-  const double play_y = jitter ? 0.999 * (L.pitch_y - parcel_d) : 0.0;
-  out.x.reserve(static_cast<std::size_t>(L.n_parcels));
-  out.y.reserve(static_cast<std::size_t>(L.n_parcels));
-  for (int r = 0; r < L.rows; ++r) {
-    for (int c = 0; c < L.cols; ++c) {
-      if (empty[static_cast<std::size_t>(r) * L.cols + c]) continue;
-      const double jx = play_x * (uniform_from_seed(state) - 0.5);
-      const double jy = play_y * (uniform_from_seed(state) - 0.5);
-      out.x.push_back(layer.x_min + (c + 0.5) * L.pitch_x + jx);
-      out.y.push_back(layer.y_min + (r + 0.5) * L.pitch_y + jy);
-    }
-  }
-  return out;
-}
-
-ParcelSystem make_layer_system(const DemConfig& cfg) {
+void add_generated_layer(const DemConfig& cfg, ParcelSystem& system) {
   const LayerPositions pos = generate_layer(cfg.layer, cfg.parcel_diameter);
   const double area = (cfg.layer.x_max - cfg.layer.x_min) * (cfg.layer.y_max - cfg.layer.y_min);
   const double n_parcels = static_cast<double>(pos.x.size());
@@ -93,20 +30,70 @@ ParcelSystem make_layer_system(const DemConfig& cfg) {
                             ? cfg.real_per_parcel
                             : derived_real_per_parcel(cfg.layer.volume_fraction, area, n_parcels,
                                                       cfg.particle_diameter);
-  ParcelSystem system(cfg);
   system.reserve(pos.x.size());
-  for (std::size_t i = 0; i < pos.x.size(); ++i) {
-    ParcelInit p;
-    p.x = pos.x[i];
-    p.y = pos.y[i];
-    p.diameter = cfg.parcel_diameter;
-    p.real_diameter = cfg.particle_diameter;
-    p.density = cfg.density;
-    p.n_real = n_real;
-    p.temperature = cfg.initial_temperature;
+  for (std::size_t i = 0; i < pos.x.size(); ++i) system.add_parcel(parcel_of(cfg, pos.x[i], pos.y[i], n_real));
+}
+
+/// The file's parcels; one of diameter D_i holds (D_i / D)^2 times real_per_parcel (eq. 11).
+void add_file_layer(const DemConfig& cfg, ParcelSystem& system) {
+  const double n_ref = cfg.real_per_parcel > 0.0
+                           ? cfg.real_per_parcel
+                           : equal_fraction_real_per_parcel(cfg.parcel_diameter, cfg.particle_diameter);
+  system.reserve(cfg.layer_parcels.size());
+  for (const PlacedParcel& f : cfg.layer_parcels) {
+    const double scale = f.diameter / cfg.parcel_diameter;
+    ParcelInit p = parcel_of(cfg, f.x, f.y, n_ref * scale * scale);
+    p.diameter = f.diameter;
+    p.vx = f.vx;
+    p.vy = f.vy;
+    p.omega = f.omega;
+    p.temperature = f.temperature;
     system.add_parcel(p);
   }
-  if (cfg.layer.settle) {
+}
+
+}  // namespace
+
+std::string describe_layer(const DemConfig& cfg) {
+  const LayerConfig& L = cfg.layer;
+  std::ostringstream s;
+  s.precision(4);
+  s << "layer: " << layer_arrangement_name(L.arrangement);
+  if (L.arrangement == LayerArrangement::File) {
+    s << ", " << cfg.layer_parcels.size() << " parcels from the layer file";
+  } else {
+    const LayerLattice plan = plan_layer(L, cfg.parcel_diameter);
+    const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
+    s << ", " << plan.rows << " rows x " << plan.cols << " columns, pitch " << plan.pitch_x * 1e6 << " x "
+      << plan.pitch_y * 1e6 << " um, nearest centres " << plan_nearest_distance(L, plan) * 1e6 << " um, "
+      << plan.n_parcels << " parcels, areal fraction "
+      << areal_fraction(static_cast<double>(plan.n_parcels), cfg.parcel_diameter, area);
+  }
+  if (layer_settles(L)) s << "; settled under gravity before t = 0";
+  return s.str();
+}
+
+std::string describe_bed(const ParcelSystem& system, const LayerConfig& layer) {
+  double top = layer.y_min, covered = 0.0;
+  for (std::size_t i = 0; i < system.size(); ++i) {
+    top = std::max(top, system.y[i] + system.radius[i]);
+    covered += disc_area(system.diameter[i]);
+  }
+  std::ostringstream s;
+  s.precision(4);
+  s << "bed: " << system.size() << " parcels, highest top at y = " << top * 1e3 << " mm (layer rectangle top "
+    << layer.y_max * 1e3 << " mm), areal fraction below it " << covered / ((layer.x_max - layer.x_min) * (top - layer.y_min));
+  return s.str();
+}
+
+ParcelSystem make_layer_system(const DemConfig& cfg) {
+  ParcelSystem system(cfg);
+  if (cfg.layer.arrangement == LayerArrangement::File) {
+    add_file_layer(cfg, system);
+  } else {
+    add_generated_layer(cfg, system);
+  }
+  if (layer_settles(cfg.layer)) {
     // Settle until the bed is quiet: kinetic energy per parcel below a millionth of the
     // work gravity does on one parcel falling one diameter.
     const double m = system.mass.empty() ? 0.0 : system.mass[0];

@@ -1,8 +1,10 @@
 #pragma once
 // Dust layer generator: fills the layer rectangle with parcels at a target areal
-// fraction, reproducibly from a seed and without initial overlaps (jittered lattice:
-// the paper's 0.589 is looser than a jammed 2-D packing, so the layer is not in contact).
+// fraction, reproducibly and without initial overlaps, in one of the arrangements of
+// LayerArrangement (docs/dem.md, "Layer structures"), or places the parcels of a layer
+// file; then builds the scene's ParcelSystem.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "solver/dem/dem_config.hpp"
@@ -10,28 +12,55 @@
 
 namespace dustlift {
 
-/// A rectangular lattice for the layer: rows x cols sites, pitch >= parcel diameter.
+/// The sites of a generated layer: rows x cols, pitch >= parcel diameter.
+/// Hexagonal: even rows (0, 2, ...) hold cols sites, odd rows cols - 1 (shifted by pitch_x / 2).
 struct LayerLattice {
-  std::int64_t n_parcels = 0;    ///< round(fraction * area / disc area)
+  std::int64_t n_parcels = 0;    ///< parcels placed
   int rows = 0, cols = 0;
-  double pitch_x = 0.0, pitch_y = 0.0;  ///< m
+  double pitch_x = 0.0, pitch_y = 0.0;  ///< m (hexagonal: pitch_y is the row spacing)
 };
 
-/// Chooses the lattice (the row count that maximises the smaller pitch).
-/// Throws std::invalid_argument if the fraction cannot be placed without overlap
-/// (above about pi/4 for a square-ish lattice) or the layer is thinner than a parcel.
+/// Rectangular lattice (lattice, jittered_lattice, settled): n = round(fraction * area /
+/// disc area) parcels on the row count that maximises the smaller pitch (sites beyond n
+/// stay empty). Throws std::invalid_argument if the fraction cannot be placed without
+/// overlap (above about pi/4) or the layer is thinner than a parcel.
 LayerLattice plan_layer_lattice(const LayerConfig& layer, double parcel_d);
 
-/// Parcel centres of the layer (x, y), in lattice order (row-major from the bottom left).
+/// Columnar: floor(depth / D) rows at vertical pitch D (touching, the bottom row on the
+/// floor), cols = round(n / rows) columns at pitch width / cols. Throws if pitch_x < D.
+LayerLattice plan_columnar_layer(const LayerConfig& layer, double parcel_d);
+
+/// Hexagonal: among row counts with row spacing depth / rows >= D, the one whose nearest
+/// centre distance (min of pitch_x and the diagonal to the offset row) is largest, with the
+/// column count that makes the parcel count nearest n. Throws if that distance is below D.
+LayerLattice plan_hexagonal_layer(const LayerConfig& layer, double parcel_d);
+
+/// The plan of layer.arrangement (throws std::invalid_argument for File: no plan).
+LayerLattice plan_layer(const LayerConfig& layer, double parcel_d);
+
+/// Smallest centre distance between parcels of a plan (and twice the gap to the floor
+/// for columnar, whose rows touch): what "no overlap" is checked against.
+double plan_nearest_distance(const LayerConfig& layer, const LayerLattice& plan);
+
+/// Parcel centres of the layer (x, y), row by row from the bottom left.
 struct LayerPositions {
   LayerLattice lattice;
   std::vector<double> x, y;
 };
 LayerPositions generate_layer(const LayerConfig& layer, double parcel_d);
 
-/// Builds the ParcelSystem of a scene: the generated layer at rest, real particles per
-/// parcel from the config or derived (alpha_p area / (N V_p)), and settles it under
-/// gravity when layer.settle is set.
+/// One line for `dustlift info` and the run log: arrangement, rows x columns, pitches,
+/// parcel count and areal fraction (or the file's parcel count).
+std::string describe_layer(const DemConfig& cfg);
+
+/// One line about the bed a system holds: its highest parcel top (m) and the areal
+/// fraction of the parcels between the floor (layer.y_min) and that top, over the layer's
+/// width (for settled beds, whose top is only known after settling).
+std::string describe_bed(const ParcelSystem& system, const LayerConfig& layer);
+
+/// Builds the ParcelSystem of a scene: the generated layer at rest (or the file's parcels),
+/// real particles per parcel from cfg.real_per_parcel (the parser derives it), and settles
+/// it under gravity when layer_settles().
 ParcelSystem make_layer_system(const DemConfig& cfg);
 
 /// Lets a bed settle under gravity g (m/s^2, downwards) until its kinetic energy per

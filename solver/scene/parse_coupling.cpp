@@ -30,8 +30,7 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, cons
   c.heat_transfer = t.boolean("heat_transfer", c.heat_transfer);
   const auto rule = t.choice("interpolation", "triangle", {"triangle", "bilinear"});
   c.interpolation = rule == "triangle" ? InterpolationRule::Triangle : InterpolationRule::Bilinear;
-  const double min_cell = std::min(Axis(build_axis_nodes(grid.x), 0).min_width(),
-                                   Axis(build_axis_nodes(grid.y), 0).min_width());
+  const double min_cell = min_cell_width(grid);
   // Checked before influence_width, whose default is the parcel diameter: the message then
   // names the key the user set.
   if (dem.parcel_diameter > min_cell) {

@@ -26,11 +26,16 @@ void parse_gas(TableReader t, GasConfig& gas) {
   const auto thermo = t.choice("thermo", "thermally_perfect", {"thermally_perfect", "calorically_perfect"});
   gas.thermo.model = thermo == "thermally_perfect" ? ThermoModel::ThermallyPerfect
                                                    : ThermoModel::CaloricallyPerfect;
-  gas.thermo.gamma = t.number("gamma", 1.4, Range::open(1.0, 5.0 / 3.0 + 1e-12));
-  gas.thermo.gas_constant = t.number("gas_constant", 288.190, Range::positive());
-  if (gas.thermo.model == ThermoModel::ThermallyPerfect && t.has("gamma")) {
-    t.fail("gamma", "only used with thermo = \"calorically_perfect\" (thermally perfect air takes cp(T) from NASA polynomials)");
+  // gamma is read (and so written into the resolved scene) only where it is used, so the
+  // resolved scene of thermally perfect air parses back.
+  if (gas.thermo.model == ThermoModel::ThermallyPerfect) {
+    if (t.has("gamma")) {
+      t.fail("gamma", "only used with thermo = \"calorically_perfect\" (thermally perfect air takes cp(T) from NASA polynomials)");
+    }
+  } else {
+    gas.thermo.gamma = t.number("gamma", 1.4, Range::open(1.0, 5.0 / 3.0 + 1e-12));
   }
+  gas.thermo.gas_constant = t.number("gas_constant", 288.190, Range::positive());
 
   TableReader tr = t.table("transport");
   const auto model = tr.choice("model", "gordon_wilke", {"inviscid", "constant", "sutherland", "gordon_wilke"});

@@ -7,6 +7,7 @@
 
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/layer_generator.hpp"
+#include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 
 namespace dustlift::scene_detail {
@@ -28,6 +29,16 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback) {
   }
   t.finish();
   return c;
+}
+
+LayerArrangement parse_arrangement(TableReader& lt) {
+  const std::string name = lt.string("arrangement", "jittered_lattice");
+  std::string allowed;
+  for (const auto& [known, value] : kLayerArrangementNames) {
+    if (known == name) return value;
+    allowed += (allowed.empty() ? "\"" : ", \"") + std::string(known) + "\"";
+  }
+  lt.fail("arrangement", "\"" + name + "\" is not one of " + allowed);
 }
 
 }  // namespace
@@ -55,26 +66,44 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   L.y_min = lt.number("y_min", L.y_min);
   L.y_max = lt.number("y_max", L.y_max);
   if (!(L.y_max > L.y_min)) lt.fail("y_max", "must be greater than y_min");
-  // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattice needs < ~0.78.
-  L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
-  L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
-  const auto arr = lt.choice("arrangement", "jittered_lattice", {"jittered_lattice", "lattice"});
-  L.arrangement = arr == "lattice" ? LayerArrangement::Lattice : LayerArrangement::JitteredLattice;
-  L.settle = lt.boolean("settle", L.settle);
-  LayerLattice lattice;
-  try {
-    lattice = plan_layer_lattice(L, dem.parcel_diameter);
-  } catch (const std::invalid_argument& e) {
-    lt.fail("volume_fraction", e.what());
+  L.arrangement = parse_arrangement(lt);
+  const bool settled = L.arrangement == LayerArrangement::Settled;
+  L.settle = lt.boolean("settle", settled || L.settle);
+  if (settled && !L.settle) lt.fail("settle", "arrangement = \"settled\" always settles the layer");
+  // Real particles per parcel per metre of depth (§4), derived unless the scene sets it:
+  // the layer rectangle then holds volume_fraction of solid in 3-D (15,024 /m for the
+  // paper's layer). A layer file without volume_fraction fills each parcel's disc to the
+  // plane's fraction instead, (pi D^2/4) / V_p (15,000 /m for 100 um).
+  const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
+  double derived = 0.0;
+  if (L.arrangement == LayerArrangement::File) {
+    if (lt.has("seed")) lt.fail("seed", "not used with arrangement = \"file\"");
+    const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
+    const ParcelFileLimits limits{grid.x.start, grid.x.end, grid.y.start, grid.y.end, dem.particle_diameter,
+                                  min_cell_width(grid)};
+    const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter, 0.0, 0.0, 0.0, dem.initial_temperature};
+    dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
+    // Parcels of diameter parcel_diameter that hold as many real particles (n ~ D^2, eq. 11).
+    double equivalent = 0.0;
+    for (const PlacedParcel& p : dem.layer_parcels) equivalent += std::pow(p.diameter / dem.parcel_diameter, 2);
+    if (fraction) L.volume_fraction = *fraction;
+    derived = fraction ? derived_real_per_parcel(*fraction, area, equivalent, dem.particle_diameter)
+                       : equal_fraction_real_per_parcel(dem.parcel_diameter, dem.particle_diameter);
+  } else {
+    if (lt.has("file")) lt.fail("file", "only used with arrangement = \"file\"");
+    // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
+    L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
+    L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+    LayerLattice plan;
+    try {
+      plan = plan_layer(L, dem.parcel_diameter);
+    } catch (const std::invalid_argument& e) {
+      lt.fail("volume_fraction", e.what());
+    }
+    derived = derived_real_per_parcel(L.volume_fraction, area, static_cast<double>(plan.n_parcels),
+                                      dem.particle_diameter);
   }
   lt.finish();
-
-  // Real particles per parcel per metre of depth (§4): derived so that the 3-D volume
-  // fraction of the layer equals volume_fraction (15,024 /m for the paper's layer).
-  const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
-  const double derived = derived_real_per_parcel(L.volume_fraction, area,
-                                                 static_cast<double>(lattice.n_parcels),
-                                                 dem.particle_diameter);
   dem.real_per_parcel = t.number("real_per_parcel", derived, Range::positive());
 
   dem.contact = parse_contact(t.table("contact"), dem.contact);

@@ -1,6 +1,7 @@
 // [run], [grid], [output] and cross-section checks.
 #include "solver/scene/parse_sections.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace dustlift::scene_detail {
@@ -43,6 +44,10 @@ void parse_grid(TableReader t, GridConfig& grid) {
   grid.x = parse_axis(t.table("x", true));
   grid.y = parse_axis(t.table("y", true));
   t.finish();
+}
+
+double min_cell_width(const GridConfig& grid) {
+  return std::min(Axis(build_axis_nodes(grid.x), 0).min_width(), Axis(build_axis_nodes(grid.y), 0).min_width());
 }
 
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem) {

@@ -14,6 +14,9 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem);
 
+/// The smallest cell width of the grid along either axis, m.
+double min_cell_width(const GridConfig& grid);
+
 /// A gas state table: p and exactly one of rho or T, optional u, v.
 PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo);
 

@@ -1,5 +1,3 @@
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -105,15 +103,7 @@ Scene parse_scene(const std::string& text, const std::string& name,
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  // A folder opens as a stream on Linux and reads as empty: name it instead.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a folder, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open scene file");
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": cannot read scene file");
-  return parse_scene(buf.str(), path, overrides);
+  return parse_scene(read_input_file(path, "scene file"), path, overrides);
 }
 
 }  // namespace dustlift

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 namespace dustlift {
@@ -27,6 +29,22 @@ std::string Range::describe() const {
     s << "finite";
   }
   return s.str();
+}
+
+std::string read_input_file(const std::string& path, const std::string& kind) {
+  // A folder opens as a stream on Linux and reads as empty: name it instead.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a folder, not a " + kind);
+  // A device or pipe (/dev/zero as a layer file) could be read forever.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw SceneError(path + ": is not a regular file, not a " + kind);
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open " + kind);
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": cannot read " + kind);
+  return buf.str();
 }
 
 TableReader::TableReader(const toml::table* table, std::string prefix, std::string file,
@@ -153,6 +171,17 @@ std::string TableReader::string(std::string_view key, std::string fallback) {
   }
   if (out_ != nullptr) out_->insert_or_assign(key, v);
   return v;
+}
+
+std::string TableReader::path(std::string_view key) {
+  std::string given = string(key, "");
+  if (given.empty()) fail(key, "missing required file path");
+  namespace fs = std::filesystem;
+  fs::path p(given);
+  if (p.is_relative()) p = fs::path(file_).parent_path() / p;
+  const std::string resolved = fs::absolute(p).lexically_normal().string();
+  if (out_ != nullptr) out_->insert_or_assign(key, resolved);
+  return resolved;
 }
 
 std::string TableReader::choice(std::string_view key, std::string fallback,

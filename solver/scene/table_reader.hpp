@@ -36,6 +36,10 @@ struct Range {
   std::string describe() const;
 };
 
+/// The whole text of an input file; SceneError naming it ("<path>: is a folder, not a
+/// <kind>", "cannot open <kind>") otherwise.
+std::string read_input_file(const std::string& path, const std::string& kind);
+
 class TableReader {
  public:
   /// `table` may be null (section absent: all defaults). `out` receives the resolved values.
@@ -48,6 +52,9 @@ class TableReader {
   long long integer(std::string_view key, long long fallback, long long min, long long max);
   bool boolean(std::string_view key, bool fallback);
   std::string string(std::string_view key, std::string fallback);
+  /// A required file path, relative to the folder of the scene file unless absolute; the
+  /// resolved scene records it absolute (it then reads back from any folder).
+  std::string path(std::string_view key);
   /// A string restricted to `allowed` (the error lists them).
   std::string choice(std::string_view key, std::string fallback,
                      std::initializer_list<std::string_view> allowed);

@@ -11,6 +11,7 @@
 
 namespace fs = std::filesystem;
 using dustlift::testing::CliResult;
+using dustlift::testing::expect_bad_input;
 using dustlift::testing::fresh_dir;
 using dustlift::testing::run_cli;
 using dustlift::testing::write_file;
@@ -55,14 +56,6 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 
 std::string without_line(const std::string& text, const std::string& line) {
   return replace_all(text, line + "\n", "");
-}
-
-void expect_bad_input(const CliResult& r, const std::string& named, const fs::path& out, const std::string& row) {
-  EXPECT_EQ(r.exit_code, 2) << row << "\n" << r.output;
-  EXPECT_NE(r.output.find(named), std::string::npos) << row << ": message must name '" << named << "'\n" << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << row << ": one line\n" << r.output;
-  EXPECT_EQ(r.output.rfind("dustlift: error: ", 0), 0u) << row << "\n" << r.output;
-  EXPECT_FALSE(fs::exists(out)) << row << ": a rejected run must leave no output folder";
 }
 
 class BadInput : public ::testing::TestWithParam<Row> {};

@@ -23,12 +23,14 @@ struct SyntheticState {
       : dir(std::filesystem::temp_directory_path() / ("dustlift_observers_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(dir);
   }
-  /// Shock at x_s (p = 2e5 behind it); layer alpha_p = 0.5 in the lowest `layer_cells` rows.
-  void set(double xs, int layer_cells) {
+  /// Shock at x_s (p = 2e5 behind it); layer alpha_p = 0.5 in the lowest `layer_cells` rows,
+  /// the highest of them filled to `top_fill` (alpha_p = 0.5 top_fill).
+  void set(double xs, int layer_cells, double top_fill = 1.0) {
     for (int j = 0; j < grid.ny(); ++j)
       for (int i = 0; i < grid.nx(); ++i) {
         p(i, j) = grid.x().center(i) < xs ? 2e5 : 1e5;
-        alpha_g(i, j) = j < layer_cells && i < 4 ? 0.5 : 1.0;  // column 4 has no particles
+        const double alpha_p = j < layer_cells - 1 ? 0.5 : j == layer_cells - 1 ? 0.5 * top_fill : 0.0;
+        alpha_g(i, j) = i < 4 ? 1.0 - alpha_p : 1.0;  // column 4 has no particles
       }
   }
   StateView view(double t) const {
@@ -60,22 +62,21 @@ TEST(SeriesObservers, ShockPositionRowPerOutputWithoutDuplicateAtFinish) {
 TEST(SeriesObservers, SurfaceHeightProfileSkipsEmptyColumnsAndStationsInterpolate) {
   SyntheticState s("surface");
   auto observer = make_surface_height_observer({.threshold = 1e-4, .stations_x = {0.02, 0.045}});
-  s.set(0.0, 2);  // alpha_p = 0.5 in rows 0-1: crossing between centres 0.0015 and 0.00275
+  s.set(0.0, 2);  // alpha_p = 0.5 in rows 0-1: surface at the top face of row 1, 0.002
   observer->on_start(s.view(0.0));
-  s.set(0.0, 3);  // rows 0-2: crossing between 0.00275 and 0.0045
+  s.set(0.0, 3, 0.5);  // row 2 (0.002-0.0035) half filled: surface at mid-cell, 0.00275
   observer->on_output(s.view(2e-5));
   observer->on_finish(s.view(2e-5));
   const std::string h5 = (s.dir / "series" / "series.h5").string();
   const auto profile = read_series_h5(h5, "surface_height");
   ASSERT_EQ(profile.rows(), 8u);  // 4 columns with particles x 2 outputs
-  const double s_frac = (0.5 - 1e-4) / 0.5;
-  EXPECT_NEAR(profile.column(2)[0], 0.0015 + s_frac * 0.00125, 1e-15);
-  EXPECT_NEAR(profile.column(2)[7], 0.00275 + s_frac * 0.00175, 1e-15);
+  EXPECT_NEAR(profile.column(2)[0], 0.002, 1e-15);
+  EXPECT_NEAR(profile.column(2)[7], 0.00275, 1e-15);
   EXPECT_EQ(profile.column(1)[3], 0.035);
   const auto stations = read_series_h5(h5, "surface_height_stations");
   ASSERT_EQ(stations.rows(), 2u);
   EXPECT_EQ(stations.header(1), "height_at_x0.02_m");
-  EXPECT_NEAR(stations.column(1)[1], 0.00275 + s_frac * 0.00175, 1e-15);
+  EXPECT_NEAR(stations.column(1)[1], 0.00275, 1e-15);
   EXPECT_TRUE(std::isnan(stations.column(2)[1]));  // between a full and an empty column
 }
 
