@@ -115,6 +115,17 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
     widths_[k] = faces_[k + 1] - faces_[k];
     if (!(widths_[k] > 0.0)) throw std::invalid_argument("axis nodes must increase strictly");
   }
+  const double length = interior_faces_.back() - interior_faces_.front();
+  const std::size_t buckets =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(length / min_width())), 1, 4 * static_cast<std::size_t>(n_));
+  bucket_width_ = length / static_cast<double>(buckets);
+  bucket_first_.resize(buckets);
+  int cell = 0;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const double start = interior_faces_.front() + static_cast<double>(b) * bucket_width_;
+    while (cell + 1 < n_ && interior_faces_[static_cast<std::size_t>(cell) + 1] <= start) ++cell;
+    bucket_first_[b] = cell;
+  }
 }
 
 double Axis::min_width() const {
@@ -124,9 +135,15 @@ double Axis::min_width() const {
 }
 
 int Axis::locate(double s) const {
-  auto it = std::upper_bound(interior_faces_.begin(), interior_faces_.end(), s);
-  int i = static_cast<int>(it - interior_faces_.begin()) - 1;
-  return std::clamp(i, 0, n_ - 1);
+  // The bucket gives the first candidate cell; a short scan finds the one whose faces hold
+  // s (the same cell as a binary search of the faces, without its dozen branches).
+  const double u = (s - interior_faces_.front()) / bucket_width_;
+  if (!(u >= 0.0)) return 0;  // also NaN
+  if (u >= static_cast<double>(bucket_first_.size())) return n_ - 1;
+  int i = bucket_first_[static_cast<std::size_t>(u)];
+  while (i + 1 < n_ && interior_faces_[static_cast<std::size_t>(i) + 1] <= s) ++i;
+  while (i > 0 && interior_faces_[static_cast<std::size_t>(i)] > s) --i;
+  return i;
 }
 
 Grid2D::Grid2D(Axis x, Axis y) : x_(std::move(x)), y_(std::move(y)) {

@@ -61,6 +61,10 @@ class Axis {
   int n_ = 0;
   int ng_ = 0;
   std::vector<double> faces_, centers_, widths_, interior_faces_;
+  /// locate() in O(1): the axis cut into equal buckets no wider than its smallest cell (at
+  /// most 4 n of them), each with the first cell it overlaps.
+  double bucket_width_ = 1.0;
+  std::vector<int> bucket_first_;
 };
 
 /// The 2-D grid: two axes and a cell indexing with ghosts (row-major, x fastest).

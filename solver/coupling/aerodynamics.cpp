@@ -104,7 +104,7 @@ double rotation_torque(double rho, double mu, double d, double omega_rel, double
   const double re_w = rho * w * d * d / (4.0 * mu);
   if (re_w < stokes_below) return kPi * mu * d * d * d * omega_rel;  // Stokes: C_T = 16 pi / Re_w
   const double ct = 6.45 / std::sqrt(re_w) + 32.1 / re_w;
-  return ct * std::pow(d, 5) * rho * omega_rel * w / 64.0;
+  return ct * (d * d * d * d * d) * rho * omega_rel * w / 64.0;
 }
 
 double heat_flow(double lambda, double nusselt, double d, double t_gas, double t_particle) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -18,25 +19,42 @@ namespace {
 /// Below this many parcels a parallel region costs more than it saves.
 constexpr std::size_t kParallelParcels = 4096;
 
-/// cp(T), c(T) and gamma(T) of the configured thermodynamics.
-struct ThermoAt {
-  double cp, c, gamma;
-};
-ThermoAt thermo_at(const ThermoConfig& t, double T) {
-  if (t.model == ThermoModel::CaloricallyPerfect) {
-    const CaloricallyPerfectGas g(t.gamma, t.gas_constant);
-    return {g.cp(T), std::sqrt(g.sound_speed_squared(T)), g.gamma(T)};
-  }
-  const ThermallyPerfectAir a(t.gas_constant);
-  return {a.cp(T), std::sqrt(a.sound_speed_squared(T)), a.gamma(T)};
-}
+}  // namespace
 
-/// The particle models always need mu and lambda; an inviscid gas lends them the
-/// Gordon-Wilke air values (the gas itself stays inviscid).
-TransportProperties particle_transport(const TransportConfig& c, double T, double cp) {
-  if (c.model == TransportModel::Inviscid) return air_transport_gordon_wilke(T);
-  return transport_properties(c, T, cp);
-}
+/// cp(T), c(T) and gamma(T) of the configured thermodynamics, and the transport properties
+/// the particle models use: the gas's own (the Gordon-Wilke model through the same table as
+/// the gas solver), or for an inviscid gas the Gordon-Wilke air values (the gas itself stays
+/// inviscid; the particles always need mu and lambda).
+class GasParticleCoupling::GasProperties {
+ public:
+  explicit GasProperties(const GasConfig& g)
+      : thermo_(g.thermo), transport_(g.transport), perfect_(g.thermo.gamma, g.thermo.gas_constant),
+        air_(g.thermo.gas_constant) {}
+  struct At {
+    double cp, c, gamma;
+  };
+  At thermo(double T) const {
+    if (thermo_.model == ThermoModel::CaloricallyPerfect) {
+      return {perfect_.cp(T), std::sqrt(perfect_.sound_speed_squared(T)), perfect_.gamma(T)};
+    }
+    const double cp = air_.cp(T), R = thermo_.gas_constant;
+    const double gamma = cp / (cp - R);
+    return {cp, std::sqrt(gamma * R * T), gamma};
+  }
+  TransportProperties transport(double T, double cp) const {
+    if (transport_.model == TransportModel::Inviscid || transport_.model == TransportModel::GordonWilke) return table_(T);
+    return transport_properties(transport_, T, cp);
+  }
+
+ private:
+  ThermoConfig thermo_;
+  TransportConfig transport_;
+  CaloricallyPerfectGas perfect_;
+  ThermallyPerfectAir air_;
+  GordonWilkeAirTable table_;
+};
+
+namespace {
 
 void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1) {
   // Zero-gradient ghost values so that interpolation next to the boundary sees the edge cell.
@@ -67,7 +85,7 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
                                          const GasConfig& gas, const DemConfig& dem)
     : grid_(grid), cfg_(config), gas_cfg_(gas), dem_cfg_(dem),
       particle_volume_(std::numbers::pi / 6.0 * std::pow(dem.particle_diameter, 3)),
-      models_(build_coupling_models(config)), alpha_p_(grid), alpha_g_(grid, 1.0), src_x_(grid), src_y_(grid),
+      models_(build_coupling_models(config)), props_(std::make_unique<GasProperties>(gas)), alpha_p_(grid), alpha_g_(grid, 1.0), src_x_(grid), src_y_(grid),
       src_e_(grid), cell_drag_(grid), cell_heat_(grid), cell_mass_(grid), cell_heat_capacity_(grid) {
   if (needs_vorticity()) vorticity_ = Field2D(grid);
   if (cfg_.pressure_force) {
@@ -84,6 +102,8 @@ void GasParticleCoupling::restore_carried_state(const CarriedState& s) {
   rows_touched_ = s.rows_touched;
   stencil_dem_steps_ = -1;  // the parcels were replaced: make the stencils anew
 }
+
+GasParticleCoupling::~GasParticleCoupling() = default;
 
 bool GasParticleCoupling::needs_vorticity() const { return cfg_.magnus || cfg_.rotation_torque; }
 
@@ -115,6 +135,7 @@ void GasParticleCoupling::update_stencils(const ParcelSystem& parcels) {
 #pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) stencils_[k] = deposit_stencil(grid_, parcels.x[k], parcels.y[k], w);
   stencil_dem_steps_ = parcels.steps();
+  scatter_.plan(stencils_, grid_.nx(), kParallelParcels);
 }
 
 void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
@@ -125,15 +146,14 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
   rows_touched_ = j1;
   cleared_to_ = clear_to;
   update_stencils(parcels);
-  // Serial in parcel order: the order is thread-independent, so the sums are too.
-  for (std::size_t k = 0; k < parcels.size(); ++k) {
+  // Each cell sums its parcels in parcel order whatever the thread count (ParallelDeposit).
+  const double* n_real = parcels.n_real.data();
+  scatter_.run(stencils_, [&](std::size_t k, int m) {
     const DepositStencil& d = stencils_[k];
-    const double volume = parcels.n_real[k] * particle_volume_;  // eq. (12), per metre of depth
-    for (int m = 0; m < d.count; ++m) {
-      const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
-      alpha_p_(i, j) += d.fraction[static_cast<std::size_t>(m)] * volume / grid_.area(i, j);
-    }
-  }
+    const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
+    const double volume = n_real[k] * particle_volume_;  // eq. (12), per metre of depth
+    alpha_p_(i, j) += d.fraction[static_cast<std::size_t>(m)] * volume / grid_.area(i, j);
+  });
   copy_edge_to_ghosts(grid_, alpha_p_, 0, clear_to);
 }
 
@@ -144,6 +164,10 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   col_.gas_rotation = attach("gas_rotation", "rad/s");
   col_.gas_T = attach("gas_temperature", "K");
   col_.gas_p = attach("gas_pressure", "Pa");
+  col_.drag_raw = attach("drag_coefficient_sampled", "N s/m");
+  col_.heat_raw = attach("heat_coefficient_sampled", "W/K");
+  col_.rest_steps = attach("rest_steps", "1");
+  col_.active = attach("stepped", "1");
   col_.drag = attach("drag_coefficient", "N s/m");
   col_.magnus = attach("magnus_coefficient", "N s^2/m^2");
   col_.torque = attach("torque_coefficient", "N m s");
@@ -174,6 +198,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   forcing_.relative_rotation = col_.relative_rotation;
   parcels.set_gas_forcing(forcing_);
   parcels.store_parts_on_last_substep_only(true);
+  parcels.set_activity_column(col_.active);
   parcels.build_neighbours_if_due();
 
   deposit_alpha(parcels);
@@ -183,7 +208,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   gas.initialize_porosity(alpha_g_);
 }
 
-void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
+void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std::size_t active) {
   const GasPrimitives g = gas.primitives();
   int j0 = 0, j1 = 0;
   row_range(ps, j0, j1);
@@ -196,20 +221,18 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
     copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
   }
-  const std::size_t n = ps.size();
+  const std::size_t n = active;
   double* gu = ps.column(col_.gas_u).data();
   double* gv = ps.column(col_.gas_v).data();
   double* grot = ps.column(col_.gas_rotation).data();
   double* gT = ps.column(col_.gas_T).data();
   double* gp = ps.column(col_.gas_p).data();
+  double* K_raw = ps.column(col_.drag_raw).data();
+  double* H_raw = ps.column(col_.heat_raw).data();
   double* K = ps.column(col_.drag).data();
   double* M = ps.column(col_.magnus).data();
   double* kappa = ps.column(col_.torque).data();
   double* H = ps.column(col_.heat_coef).data();
-  double* jx = ps.column(col_.impulse_x).data();
-  double* jy = ps.column(col_.impulse_y).data();
-  double* work = ps.column(col_.work).data();
-  double* heat = ps.column(col_.heat).data();
   const double d = dem_cfg_.particle_diameter;
   const bool vort = needs_vorticity();
 #pragma omp parallel for schedule(static) if (n >= kParallelParcels)
@@ -221,8 +244,8 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     s.v = st.apply(*g.v);
     s.p = st.apply(*g.p);
     s.T = st.apply(*g.T);
-    const ThermoAt th = thermo_at(gas_cfg_.thermo, s.T);
-    const TransportProperties tp = particle_transport(gas_cfg_.transport, s.T, th.cp);
+    const GasProperties::At th = props_->thermo(s.T);
+    const TransportProperties tp = props_->transport(s.T, th.cp);
     s.mu = tp.mu;
     s.lambda = tp.lambda;
     s.c = th.c;
@@ -241,38 +264,44 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
     gT[k] = s.T;
     gp[k] = s.p;
-    K[k] = c.drag;
+    K_raw[k] = K[k] = c.drag;
     M[k] = c.magnus;
     kappa[k] = c.torque;
-    H[k] = c.heat;
+    H_raw[k] = H[k] = c.heat;
     ps.pressure_fx[k] = c.pressure_fx;
     ps.pressure_fy[k] = c.pressure_fy;
-    jx[k] = jy[k] = work[k] = heat[k] = 0.0;
+  }
+  // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).
+  for (ParcelColumn c : {col_.impulse_x, col_.impulse_y, col_.work, col_.heat}) {
+    std::vector<double>& v = ps.column(c);
+    std::fill(v.begin(), v.end(), 0.0);
   }
 }
 
-void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSystem& ps, double dt) {
+void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSystem& ps, double dt,
+                                                std::size_t active) {
   int j0 = 0, j1 = 0;
   row_range(ps, j0, j1);
   for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) clear_rows(grid_, *f, j1);
   update_stencils(ps);
+  const double* K_raw = ps.column(col_.drag_raw).data();
+  const double* H_raw = ps.column(col_.heat_raw).data();
   double* K = ps.column(col_.drag).data();
   double* H = ps.column(col_.heat_coef).data();
-  // Per-cell sums over the parcels, in parcel order (thread-independent).
+  // Per-cell sums over all parcels (the resting ones' samples are current), each in parcel
+  // order (thread-independent).
   const double c_p = dem_cfg_.heat_capacity;
-  for (std::size_t k = 0; k < ps.size(); ++k) {
-    const double kd = ps.n_real[k] * K[k];
-    const double kh = ps.n_real[k] * H[k];
+  const double* n_real = ps.n_real.data();
+  const double* mass = ps.mass.data();
+  scatter_.run(stencils_, [&](std::size_t k, int m) {
     const DepositStencil& st = stencils_[k];
-    for (int m = 0; m < st.count; ++m) {
-      const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
-      const double f = st.fraction[static_cast<std::size_t>(m)];
-      cell_drag_(i, j) += f * kd;
-      cell_heat_(i, j) += f * kh;
-      cell_mass_(i, j) += f * ps.mass[k];
-      cell_heat_capacity_(i, j) += f * ps.mass[k] * c_p;
-    }
-  }
+    const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
+    const double f = st.fraction[static_cast<std::size_t>(m)];
+    cell_drag_(i, j) += f * (n_real[k] * K_raw[k]);
+    cell_heat_(i, j) += f * (n_real[k] * H_raw[k]);
+    cell_mass_(i, j) += f * mass[k];
+    cell_heat_capacity_(i, j) += f * mass[k] * c_p;
+  });
   const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
   const GasPrimitives g = gas.primitives();
   const int nx = grid_.nx();
@@ -281,14 +310,14 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
     for (int i = 0; i < nx; ++i) {
       if (cell_mass_(i, j) == 0.0) continue;
       const double m_gas = gas_mass_density(i, j) * grid_.area(i, j);
-      const ThermoAt th = thermo_at(gas_cfg_.thermo, (*g.T)(i, j));
+      const GasProperties::At th = props_->thermo((*g.T)(i, j));
       const double cv_gas = th.cp / th.gamma;
       cell_drag_(i, j) = 1.0 / (1.0 + dt * cell_drag_(i, j) * (1.0 / m_gas + 1.0 / cell_mass_(i, j)));
       cell_heat_(i, j) =
           1.0 / (1.0 + dt * cell_heat_(i, j) * (1.0 / (m_gas * cv_gas) + 1.0 / cell_heat_capacity_(i, j)));
     }
   }
-  const std::size_t n = ps.size();
+  const std::size_t n = active;
 #pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
     const DepositStencil& st = stencils_[k];
@@ -346,20 +375,18 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
   clear_rows(grid_, src_x_, rows_touched_);
   clear_rows(grid_, src_y_, rows_touched_);
   clear_rows(grid_, src_e_, rows_touched_);
-  for (std::size_t k = 0; k < ps.size(); ++k) {
+  const double* n_real = ps.n_real.data();
+  scatter_.run(stencils_, [&](std::size_t k, int m) {
     const double energy = work[k] + heat[k];
     // A parcel that exchanged nothing adds nothing (skipping it keeps -0 out of the sums).
-    if (jx[k] == 0.0 && jy[k] == 0.0 && energy == 0.0) continue;
+    if (jx[k] == 0.0 && jy[k] == 0.0 && energy == 0.0) return;
     const DepositStencil& d = stencils_[k];
-    const double nr = ps.n_real[k];
-    for (int m = 0; m < d.count; ++m) {
-      const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
-      const double w = d.fraction[static_cast<std::size_t>(m)] * nr / (grid_.area(i, j) * dt);
-      src_x_(i, j) += w * jx[k];
-      src_y_(i, j) += w * jy[k];
-      src_e_(i, j) += w * energy;
-    }
-  }
+    const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
+    const double w = d.fraction[static_cast<std::size_t>(m)] * n_real[k] / (grid_.area(i, j) * dt);
+    src_x_(i, j) += w * jx[k];
+    src_y_(i, j) += w * jy[k];
+    src_e_(i, j) += w * energy;
+  });
   const int rows = rows_touched_;
   Field2D& sx = gas.source(1);
   Field2D& sy = gas.source(2);
@@ -385,14 +412,77 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
   gas.change_porosity(alpha_g_, 0, cleared_to_);
 }
 
+std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, ParcelSystem& ps, double dt) {
+  const std::size_t n = ps.size();
+  double* rest_steps = ps.column(col_.rest_steps).data();
+  double* active = ps.column(col_.active).data();
+  std::size_t limit = n;
+  if (skip_resting_ && n > 0) {
+    gas.resting_gas(resting_);
+    // The counts hold for one reference state: a new one starts them again.
+    if (!resting_.valid || resting_.p != rest_p_ || resting_.T != rest_T_) {
+      std::fill(rest_steps, rest_steps + n, 0.0);
+      rest_p_ = resting_.p;
+      rest_T_ = resting_.T;
+    }
+    const int* first_resting = resting_.first_resting.data();
+    const int ny = grid_.ny();
+    const bool valid = resting_.valid;
+    const double T_ref = resting_.T;
+    double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelParcels)
+    for (std::size_t k = 0; k < n; ++k) {
+      bool rests = valid && ps.vx[k] == 0.0 && ps.vy[k] == 0.0 && ps.omega[k] == 0.0 && ps.contact_fx[k] == 0.0 &&
+                   ps.contact_fy[k] == 0.0 && ps.contact_torque[k] == 0.0 && ps.temperature[k] == T_ref;
+      if (rests) {
+        // The gas over the parcel's interpolation quad and derivative stencils (two cells each
+        // way) rests at the reference.
+        const int i = grid_.x().locate(ps.x[k]), j = grid_.y().locate(ps.y[k]);
+        for (int r = std::max(j - 2, 0); r <= std::min(j + 2, ny - 1) && rests; ++r) rests = first_resting[r] <= i - 2;
+      }
+      rest_steps[k] = rests ? rest_steps[k] + 1.0 : 0.0;
+      // Two steps: the last step was then a full step at rest, so its stored force parts and
+      // samples are exactly what this step would give.
+      if (rest_steps[k] < 2.0) front = std::max(front, ps.x[k]);
+      v_max = std::max(v_max, std::hypot(ps.vx[k], ps.vy[k]));
+      d_max = std::max(d_max, ps.diameter[k]);
+    }
+    if (front == -std::numeric_limits<double>::infinity()) {
+      limit = 0;  // everything rests
+    } else {
+      // Within one CFD step a push travels one contact per sub-step, parcels move v dt, and a
+      // parcel's samples read the alpha_p and gas of cells within two cells of it.
+      const int i_front = grid_.x().locate(front);
+      double cell = 0.0;
+      for (int i = std::max(i_front - 4, 0); i <= std::min(i_front + 12, grid_.nx() - 1); ++i) {
+        cell = std::max(cell, grid_.x().width(i));
+      }
+      const double reach = (ps.substeps_for(dt) + 2) * d_max + 2.0 * v_max * dt + 4.0 * cell + cfg_.influence_width;
+      const double cut = front + reach;
+      std::size_t last = 0;
+#pragma omp parallel for schedule(static) reduction(max : last) if (n >= kParallelParcels)
+      for (std::size_t k = 0; k < n; ++k) {
+        if (rest_steps[k] < 2.0 || ps.x[k] <= cut) last = std::max(last, k + 1);
+      }
+      limit = last;
+    }
+  }
+#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
+  for (std::size_t k = 0; k < n; ++k) active[k] = k < limit ? 1.0 : 0.0;
+  last_active_ = limit;
+  return limit;
+}
+
 void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double dt) {
+  std::size_t active = parcels.size();
   {
     const ScopedTimer t(timings_.sample);
-    sample_gas(gas, parcels);
+    active = plan_active_parcels(gas, parcels, dt);
+    sample_gas(gas, parcels, active);
   }
   if (cfg_.two_way) {
     const ScopedTimer t(timings_.relief);
-    stiff_exchange_relief(gas, parcels, dt);
+    stiff_exchange_relief(gas, parcels, dt, active);
   }
   exchange_.substeps = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);

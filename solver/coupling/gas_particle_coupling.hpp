@@ -20,13 +20,14 @@
 #include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/coupling_models.hpp"
 #include "solver/coupling/grid_transfer.hpp"
+#include "solver/coupling/parallel_deposit.hpp"
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_config.hpp"
+#include "solver/gas/gas_solver.hpp"
 
 namespace dustlift {
 
-class GasSolver;
 
 /// What the parcels received from the gas through the exchange terms in the last step
 /// (sums over parcels of n_i x per-particle quantities; J/m and N s/m per metre of depth),
@@ -41,6 +42,7 @@ class GasParticleCoupling {
  public:
   GasParticleCoupling(const Grid2D& grid, const CouplingConfig& config, const GasConfig& gas,
                       const DemConfig& dem);
+  ~GasParticleCoupling();
 
   /// Attaches the coupling's columns to `parcels`, deposits the initial alpha_p and, with
   /// two-way coupling, gives the gas its porosity (the primitive state stays the initial one).
@@ -57,6 +59,10 @@ class GasParticleCoupling {
     double sample = 0.0, relief = 0.0, deposit = 0.0;
   };
   const Timings& timings() const { return timings_; }
+  /// Skip parcels resting exactly (see plan_active_parcels); on by default.
+  void set_skip_resting(bool on) { skip_resting_ = on; }
+  /// Parcels stepped in the last CFD step (the others rested exactly).
+  std::size_t last_active_parcels() const { return last_active_; }
   /// Deposited particle volume fraction (eq. 12), before the cap.
   const Field2D& alpha_p() const { return alpha_p_; }
   /// Parcel columns (see initialize): gas rotation omega_z/2 at the parcel (right-handed),
@@ -84,10 +90,20 @@ class GasParticleCoupling {
  private:
   struct Columns {
     ParcelColumn gas_u, gas_v, gas_rotation, gas_T, gas_p;
-    ParcelColumn drag, magnus, torque, heat_coef;
+    ParcelColumn drag_raw, heat_raw;  ///< as sampled (the relief sums read these)
+    ParcelColumn drag, magnus, torque, heat_coef;  ///< as the sub-steps use them
     ParcelColumn impulse_x, impulse_y, work, heat;
     ParcelColumn relative_rotation;
+    ParcelColumn rest_steps;  ///< consecutive steps begun exactly at rest in resting gas
+    ParcelColumn active;      ///< 1: stepped this CFD step (ParcelSystem::set_activity_column)
   };
+  /// Exact skipping of resting parcels: a parcel that began this step and the last one at
+  /// rest (v = w = 0, no contact force, T = T_gas) in gas resting at one state (its whole
+  /// interpolation and derivative stencil) would not change a bit, nor would anything it
+  /// feeds, as long as nothing that moves can reach it within the step. The parcels after the
+  /// last one that may move (or lies within reach of one) are left out of sampling and
+  /// sub-steps. Returns how many parcels, from the first, are stepped.
+  std::size_t plan_active_parcels(const GasSolver& gas, ParcelSystem& parcels, double dt);
   /// Drag and heat exchange are stiff in a packed layer: the gas in a cell holds far less
   /// momentum and heat than its particles (mass loading ~ 700 at alpha_p = 0.59), so its
   /// relaxation time can be shorter than a CFD step. With explicit, frozen-gas exchange the
@@ -96,8 +112,8 @@ class GasParticleCoupling {
   /// (K: sum of the cell's drag or heat coefficients; C: momentum or heat capacities), which
   /// tends to 1 when the exchange is slow and to the exact equilibrium transfer when it is
   /// fast. Conservation is unaffected: the gas receives exactly what the parcels get.
-  void stiff_exchange_relief(const GasSolver& gas, ParcelSystem& parcels, double dt);
-  void sample_gas(const GasSolver& gas, ParcelSystem& parcels);
+  void stiff_exchange_relief(const GasSolver& gas, ParcelSystem& parcels, double dt, std::size_t active);
+  void sample_gas(const GasSolver& gas, ParcelSystem& parcels, std::size_t active);
   /// Deposit stencils at the current positions (one per parcel, parcel order), unless they
   /// are current (no DEM step since they were made).
   void update_stencils(const ParcelSystem& parcels);
@@ -112,6 +128,8 @@ class GasParticleCoupling {
   DemConfig dem_cfg_;
   double particle_volume_ = 0.0;  ///< V_p of one real particle
   std::vector<std::unique_ptr<CouplingModel>> models_;
+  class GasProperties;
+  std::unique_ptr<GasProperties> props_;
   GasForcing forcing_;
   Columns col_;
 
@@ -119,11 +137,16 @@ class GasParticleCoupling {
   Field2D src_x_, src_y_, src_e_;
   Field2D cell_drag_, cell_heat_, cell_mass_, cell_heat_capacity_;  ///< stiff_exchange_relief sums
   std::vector<DepositStencil> stencils_;  ///< parcel order, at the positions after the last DEM step
+  ParallelDeposit scatter_;               ///< planned with the stencils
   long long stencil_dem_steps_ = -1;      ///< ParcelSystem::steps() when they were made
   int rows_touched_ = 0;  ///< deposit rows [0, rows_touched_) to clear next time
   int cleared_to_ = 0;    ///< rows the last deposit cleared (they may have changed)
   ExchangeTotals exchange_;
   Timings timings_;
+  bool skip_resting_ = true;
+  GasSolver::RestingGas resting_;
+  double rest_p_ = 0.0, rest_T_ = 0.0;  ///< the reference the rest_steps counts refer to
+  std::size_t last_active_ = 0;
 };
 
 }  // namespace dustlift

@@ -9,6 +9,17 @@
 
 namespace dustlift {
 
+void ParcelSystem::update_active_count() {
+  if (!activity_.valid()) {
+    active_count_ = size();
+    return;
+  }
+  const std::vector<double>& a = attached_[activity_.index];
+  std::size_t k = a.size();
+  while (k > 0 && a[k - 1] == 0.0) --k;
+  active_count_ = k;
+}
+
 double ParcelSystem::wall_position(int w) const {
   const DemDomain& d = cfg_.domain;
   return w == 0 ? d.y_min : w == 1 ? d.y_max : w == 2 ? d.x_min : d.x_max;
@@ -20,6 +31,7 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
   if (needs_rebuild_) {
     const ScopedTimer t(timings_.rebuild);
     rebuild_neighbours();
+    update_active_count();  // the sort moved the active parcels
   }
   {
     const ScopedTimer t(timings_.contacts);
@@ -27,12 +39,13 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
   }
   const ScopedTimer t(timings_.integrate);
   integrate(dt, store_parts);
+  parcel_substeps_ += static_cast<long long>(active_count());
   time_ += dt;
   ++steps_;
 }
 
 void ParcelSystem::compute_contacts(double dt) {
-  const std::size_t n = size();
+  const std::size_t n = active_count();
   const ContactParams pc = cfg_.contact;
   const ContactParams wc = cfg_.wall_contact;
   const double lx = length_x_;
@@ -285,7 +298,7 @@ void ParcelSystem::integrate(double dt, bool store_parts) {
   }
   max_d2 = integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(), inv_mass_real_.data(),
                            inv_inertia_real_.data(), contact_fx.data(), contact_fy.data(), contact_torque.data(),
-                           x_build_.data(), y_build_.data(), inv_skin2_.data(), size(), dt, cfg_.gravity_x,
+                           x_build_.data(), y_build_.data(), inv_skin2_.data(), active_count(), dt, cfg_.gravity_x,
                            cfg_.gravity_y);
   // A parcel moved more than its skin: a pair may now be closer than the list knows.
   if (max_d2 > 1.0) needs_rebuild_ = true;
@@ -329,7 +342,7 @@ void ParcelSystem::integrate_forced(double dt, bool store_parts) {
                        fluid_torque.data(),
                        heat_rate.data(),
                        col(f.relative_rotation)};
-  const std::size_t n = size();
+  const std::size_t n = active_count();
   const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity, sign = f.magnus_sign;
   const std::array<bool, 6> flags{f.drag, f.magnus, f.pressure, f.torque, f.heat, store_parts};
   const double max_d2 = dispatch_flags(flags, [&]<bool D, bool M, bool P, bool T, bool H, bool S>() {

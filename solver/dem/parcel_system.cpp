@@ -220,6 +220,7 @@ int ParcelSystem::advance(double dt_total, const SubstepHook& hook) {
   const int n = substeps_for(dt_total);
   const double dt = dt_total / n;
   const double t0 = time_;
+  update_active_count();
   for (int k = 0; k < n; ++k) {
     if (hook) hook(*this, t0 + k * dt);
     step_with_parts(dt, !parts_last_only_ || k == n - 1);

@@ -129,6 +129,8 @@ class ParcelSystem {
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long neighbour_rebuilds() const { return rebuilds_; }
+  /// Parcel-sub-steps computed (sub-steps times the parcels stepped in each).
+  long long parcel_substeps() const { return parcel_substeps_; }
   /// Wall seconds spent in the contact pass, the integration and the neighbour rebuilds.
   struct Timings {
     double contacts = 0.0, integrate = 0.0, rebuild = 0.0;
@@ -173,6 +175,14 @@ class ParcelSystem {
   /// its last sub-step in their columns (the observers' view); other sub-steps skip those
   /// stores. Default: always stored.
   void store_parts_on_last_substep_only(bool on) { parts_last_only_ = on; }
+
+  /// Limits the sub-steps to the parcels up to the last one whose `activity` column value is
+  /// non-zero (the coupling marks those that may move this CFD step; those after them rest
+  /// exactly and would not change a bit). Re-read at every advance and after every re-sort.
+  /// An invalid handle (the default) steps every parcel.
+  void set_activity_column(ParcelColumn activity) { activity_ = activity; }
+  /// Parcels the current sub-steps run over: [0, active_count()).
+  std::size_t active_count() const { return active_count_ < size() ? active_count_ : size(); }
 
   /// Checkpoint access to the private state (see ParcelInternals).
   ParcelInternals internals() const;
@@ -230,6 +240,7 @@ class ParcelSystem {
   double time_ = 0.0;
   long long steps_ = 0;
   long long rebuilds_ = 0;
+  long long parcel_substeps_ = 0;
 
   // Derived per parcel, permuted along with the state.
   std::vector<double> inv_mass_real_, inv_inertia_real_;
@@ -241,6 +252,9 @@ class ParcelSystem {
   std::vector<std::vector<double>> attached_;
   GasForcing forcing_;
   bool parts_last_only_ = false;
+  ParcelColumn activity_;
+  std::size_t active_count_ = static_cast<std::size_t>(-1);
+  void update_active_count();
   Timings timings_;
 
   // Cell grid of the last rebuild.

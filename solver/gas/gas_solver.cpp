@@ -19,7 +19,9 @@
 #include "solver/gas/slau2.hpp"
 #include "solver/gas/stage_update.hpp"
 #include "solver/gas/thermo.hpp"
+#include "solver/gas/time_step_rows.hpp"
 #include "solver/gas/transport.hpp"
+#include "solver/gas/viscous_rows.hpp"
 
 namespace dustlift {
 namespace {
@@ -94,6 +96,7 @@ struct GasSolver::Impl {
   /// Per interior row, the cells whose step-start state is saved in U0 this step (a hull of
   /// the ranges updated so far; a cell enters it before its first update of the step).
   std::vector<int> saved_lo, saved_hi;
+  std::vector<int> widened_lo_, widened_hi_;  ///< scratch of widen_active_ranges
   /// Geometry per index (ghosts included, offset ng): 1/width, 1/(c_{i+1}-c_i), 1/(c_{i+1}-c_{i-1}).
   std::vector<double> inv_dx, inv_dy, inv_dxc, inv_dyc, inv_dx2, inv_dy2;
   /// Inflow states along each boundary (one per boundary cell).
@@ -106,6 +109,9 @@ struct GasSolver::Impl {
   std::vector<CellFault> fault_kind;
   static constexpr std::size_t kScratchRows = 10;
   long long cell_updates = 0;  ///< cell-stage updates done since construction
+  /// The state was written from outside (initialize, a checkpoint, a test): check it before
+  /// the next step. The solver's own updates check every cell they change.
+  bool externally_modified = true;
 
   Impl(const Grid2D& g, const GasConfig& c)
       : grid(g), config(c), thermo(make_thermo(c.thermo)), muscl(muscl_settings(c.scheme)),
@@ -129,6 +135,8 @@ struct GasSolver::Impl {
     rest_from.assign(static_cast<std::size_t>(ny + 2 * ng), nx + ng);
     source_rows.assign(static_cast<std::size_t>(ny), SourceExtent{});
     saved_lo.assign(static_cast<std::size_t>(ny), 0);
+    widened_lo_.assign(static_cast<std::size_t>(ny), 0);
+    widened_hi_.assign(static_cast<std::size_t>(ny), 0);
     saved_hi.assign(static_cast<std::size_t>(ny), 0);
     rho = Field2D(grid, 1.0);
     u = Field2D(grid);
@@ -329,66 +337,46 @@ struct GasSolver::Impl {
     for (int j = -1; j <= ny; ++j) {
       int lo = 0, hi = 0;
       transport_range(j, lo, hi);
+      if (hi <= lo) continue;
+      const std::size_t c = at(lo, j);
+      if (config.transport.model == TransportModel::GordonWilke) {
+        air_table.apply(T.data() + c, mu.data() + c, lambda.data() + c, hi - lo);
+        continue;
+      }
       for (int i = lo; i < hi; ++i) {
-        const std::size_t c = at(i, j);
-        const TransportProperties tp = transport_at(th, T.data()[c]);
-        mu.data()[c] = tp.mu;
-        lambda.data()[c] = tp.lambda;
+        const std::size_t ci = at(i, j);
+        const TransportProperties tp = transport_at(th, T.data()[ci]);
+        mu.data()[ci] = tp.mu;
+        lambda.data()[ci] = tp.lambda;
       }
     }
   }
 
-  /// Subtracts the porosity-weighted viscous and heat fluxes of x-faces [f0, f1) of row j.
+  /// Subtracts the porosity-weighted viscous and heat fluxes of x-faces [f0, f1) of row j
+  /// (face f between cells f-1 and f).
   void viscous_x_row(int j, int f0, int f1) {
-    const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx + 1);
-    const std::size_t cu = static_cast<std::size_t>(stride);
-    const double it = geo(inv_dy2, j);
-    for (int f = f0; f < f1; ++f) {
-      const std::size_t c = at(f, j), l = c - 1;  // face f: between cells f-1 and f
-      const double idn = geo(inv_dxc, f - 1);
-      const double ux = (u.data()[c] - u.data()[l]) * idn;
-      const double vx = (v.data()[c] - v.data()[l]) * idn;
-      const double tx = (T.data()[c] - T.data()[l]) * idn;
-      const double uy = 0.5 * it * (u.data()[c + cu] - u.data()[c - cu] + u.data()[l + cu] - u.data()[l - cu]);
-      const double vy = 0.5 * it * (v.data()[c + cu] - v.data()[c - cu] + v.data()[l + cu] - v.data()[l - cu]);
-      const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
-      const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
-      const double uf = 0.5 * (u.data()[c] + u.data()[l]);
-      const double vf = 0.5 * (v.data()[c] + v.data()[l]);
-      const double txx = mf * (4.0 / 3.0 * ux - 2.0 / 3.0 * vy);
-      const double txy = mf * (uy + vx);
-      const double af = 0.5 * (alpha.data()[c] + alpha.data()[l]);
-      const std::size_t k = row + static_cast<std::size_t>(f);
-      fx[1][k] -= af * txx;
-      fx[2][k] -= af * txy;
-      fx[3][k] -= af * (uf * txx + vf * txy + kf * tx);
-    }
+    const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx + 1) + static_cast<std::size_t>(f0);
+    const std::size_t hi = at(f0, j), lo = hi - 1, up = static_cast<std::size_t>(stride);
+    const ViscousFaceCells c{u.data() + lo, u.data() + hi, v.data() + lo, v.data() + hi, T.data() + lo, T.data() + hi,
+                             mu.data() + lo, mu.data() + hi, lambda.data() + lo, lambda.data() + hi,
+                             alpha.data() + lo, alpha.data() + hi,
+                             u.data() + lo - up, u.data() + lo + up, u.data() + hi - up, u.data() + hi + up,
+                             v.data() + lo - up, v.data() + lo + up, v.data() + hi - up, v.data() + hi + up};
+    viscous_x_faces(c, inv_dxc.data() + static_cast<std::size_t>(f0 - 1 + ng), geo(inv_dy2, j), fx[1].data() + row,
+                    fx[2].data() + row, fx[3].data() + row, f1 - f0);
   }
 
-  /// Same for the y-faces [i0, i1) of face row jf.
+  /// Same for the y-faces [i0, i1) of face row jf (face (i, jf) between cells (i, jf-1), (i, jf)).
   void viscous_y_row(int jf, int i0, int i1) {
-    const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx);
-    const double idn = geo(inv_dyc, jf - 1);
-    for (int i = i0; i < i1; ++i) {
-      const std::size_t c = at(i, jf), l = c - static_cast<std::size_t>(stride);  // cells (i, jf-1), (i, jf)
-      const double uy = (u.data()[c] - u.data()[l]) * idn;
-      const double vy = (v.data()[c] - v.data()[l]) * idn;
-      const double ty = (T.data()[c] - T.data()[l]) * idn;
-      const double it = geo(inv_dx2, i);
-      const double ux = 0.5 * it * (u.data()[c + 1] - u.data()[c - 1] + u.data()[l + 1] - u.data()[l - 1]);
-      const double vx = 0.5 * it * (v.data()[c + 1] - v.data()[c - 1] + v.data()[l + 1] - v.data()[l - 1]);
-      const double mf = 0.5 * (mu.data()[c] + mu.data()[l]);
-      const double kf = 0.5 * (lambda.data()[c] + lambda.data()[l]);
-      const double uf = 0.5 * (u.data()[c] + u.data()[l]);
-      const double vf = 0.5 * (v.data()[c] + v.data()[l]);
-      const double tyy = mf * (4.0 / 3.0 * vy - 2.0 / 3.0 * ux);
-      const double txy = mf * (uy + vx);
-      const double af = 0.5 * (alpha.data()[c] + alpha.data()[l]);
-      const std::size_t k = row + static_cast<std::size_t>(i);
-      fy[1][k] -= af * txy;
-      fy[2][k] -= af * tyy;
-      fy[3][k] -= af * (uf * txy + vf * tyy + kf * ty);
-    }
+    const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i0);
+    const std::size_t hi = at(i0, jf), lo = hi - static_cast<std::size_t>(stride);
+    const ViscousFaceCells c{u.data() + lo, u.data() + hi, v.data() + lo, v.data() + hi, T.data() + lo, T.data() + hi,
+                             mu.data() + lo, mu.data() + hi, lambda.data() + lo, lambda.data() + hi,
+                             alpha.data() + lo, alpha.data() + hi,
+                             u.data() + lo - 1, u.data() + lo + 1, u.data() + hi - 1, u.data() + hi + 1,
+                             v.data() + lo - 1, v.data() + lo + 1, v.data() + hi - 1, v.data() + hi + 1};
+    viscous_y_faces(c, geo(inv_dyc, jf - 1), inv_dx2.data() + static_cast<std::size_t>(i0 + ng), fy[1].data() + row,
+                    fy[2].data() + row, fy[3].data() + row, i1 - i0);
   }
 
   /// x-faces [row_lo, row_hi] of each row: those of its active cells (face f lies between
@@ -557,6 +545,31 @@ struct GasSolver::Impl {
     }
   }
 
+  /// Ranges of the next stage from this step's first: a stage changes only cells in its
+  /// ranges, so a cell further than the stencil reach (2 cells, 2 rows) from all of them
+  /// still has the resting stencil it had (exact; cheaper than scanning again).
+  void widen_active_ranges() {
+    if (!skip_resting) return;
+#pragma omp single
+    {
+      widened_lo_ = row_lo;
+      widened_hi_ = row_hi;
+      for (int j = 0; j < ny; ++j) {
+        int lo = nx, hi = 0;
+        for (int r = std::max(j - ng, 0); r <= std::min(j + ng, ny - 1); ++r) {
+          const auto k = static_cast<std::size_t>(r);
+          if (widened_lo_[k] >= widened_hi_[k]) continue;
+          lo = std::min(lo, widened_lo_[k] - ng);
+          hi = std::max(hi, widened_hi_[k] + ng);
+        }
+        lo = std::max(lo, 0);
+        hi = std::min(hi, nx);
+        row_lo[static_cast<std::size_t>(j)] = lo < hi ? lo : 0;
+        row_hi[static_cast<std::size_t>(j)] = lo < hi ? hi : 0;
+      }
+    }
+  }
+
   RestReference rest_reference_of(std::size_t c) const {
     RestReference r;
     r.valid = u.data()[c] == 0.0 && v.data()[c] == 0.0;
@@ -577,7 +590,11 @@ struct GasSolver::Impl {
 #pragma omp parallel if (threaded)
     {
       fill_ghosts_parallel();
-      compute_active_ranges();
+      if (c_new == 1.0) {
+        compute_active_ranges();
+      } else {
+        widen_active_ranges();
+      }
       if (viscous) compute_transport(th);
       compute_x_fluxes(th);
       compute_y_fluxes(th);
@@ -650,6 +667,7 @@ struct GasSolver::Impl {
 #pragma omp for schedule(static)
       for (int j = j0; j < j1; ++j) {
         const StageScratch sc = stage_scratch();
+        fault_i[static_cast<std::size_t>(j)] = -1;
         int first = nx, last = -1;
         for (int i = 0; i < nx; ++i) {
           const std::size_t c = at(i, j);
@@ -679,6 +697,7 @@ struct GasSolver::Impl {
     fill_porosity_ghosts();
 #pragma omp parallel if (threaded)
     fill_ghosts_parallel();
+    throw_on_fault();
   }
 
   /// Checks the current primitives (as left by the last step or refresh_primitives(), e.g.
@@ -710,7 +729,10 @@ struct GasSolver::Impl {
 
   template <class Th>
   void rk3_step(const Th& th, double dt) {
-    check_current_state();
+    if (externally_modified) {
+      check_current_state();
+      externally_modified = false;
+    }
     ensure_scratch();
     fill_porosity_ghosts();
     find_source_rows();
@@ -727,22 +749,24 @@ struct GasSolver::Impl {
   double stable_dt(const Th& th) const {
     double max_rate = 0.0;
     double min_viscous_dt = std::numeric_limits<double>::infinity();
+    const bool table = viscous && config.transport.model == TransportModel::GordonWilke;
 #pragma omp parallel for if (threaded) schedule(static) reduction(max : max_rate) reduction(min : min_viscous_dt)
     for (int j = 0; j < ny; ++j) {
       const double idy = geo(inv_dy, j);
+      const std::size_t c0 = at(0, j);
+      const TimeStepRow row{u.data() + c0, v.data() + c0, T.data() + c0, rho.data() + c0,
+                            inv_dx.data() + static_cast<std::size_t>(ng), idy, nx};
+      time_step_row(th, table ? &air_table : nullptr, row, max_rate, min_viscous_dt);
+      if (!viscous || table) continue;
       for (int i = 0; i < nx; ++i) {
         const std::size_t c = at(i, j);
         const double t = T.data()[c];
-        const double cs = std::sqrt(th.sound_speed_squared(t));
         const double idx = geo(inv_dx, i);
-        max_rate = std::max(max_rate, (std::abs(u.data()[c]) + cs) * idx + (std::abs(v.data()[c]) + cs) * idy);
-        if (viscous) {
-          const double cp = th.cp(t);
-          const TransportProperties tp = transport_at(th, t);
-          const double diffusivity_factor = std::max(1.0, th.gamma(t) * tp.lambda / (tp.mu * cp));
-          const double h2 = std::min(1.0 / (idx * idx), 1.0 / (idy * idy));
-          min_viscous_dt = std::min(min_viscous_dt, 0.25 * h2 * rho.data()[c] / (tp.mu * diffusivity_factor));
-        }
+        const double cp = th.cp(t);
+        const TransportProperties tp = transport_at(th, t);
+        const double diffusivity_factor = std::max(1.0, th.gamma(t) * tp.lambda / (tp.mu * cp));
+        const double h2 = std::min(1.0 / (idx * idx), 1.0 / (idy * idy));
+        min_viscous_dt = std::min(min_viscous_dt, 0.25 * h2 * rho.data()[c] / (tp.mu * diffusivity_factor));
       }
     }
     return std::min(config.scheme.cfl / max_rate, min_viscous_dt);
@@ -841,16 +865,38 @@ double GasSolver::sound_speed(int i, int j) const {
   return std::visit([&](const auto& th) { return std::sqrt(th.sound_speed_squared(t)); }, impl_->thermo);
 }
 
-Field2D& GasSolver::conserved(int k) { return impl_->U[static_cast<std::size_t>(k)]; }
+Field2D& GasSolver::conserved(int k) {
+  impl_->externally_modified = true;
+  return impl_->U[static_cast<std::size_t>(k)];
+}
 const Field2D& GasSolver::conserved(int k) const { return impl_->U[static_cast<std::size_t>(k)]; }
 
 void GasSolver::refresh_primitives() {
   std::visit([&](const auto& th) { impl_->refresh(th); }, impl_->thermo);
 }
 
-Field2D& GasSolver::porosity() { return impl_->alpha; }
+Field2D& GasSolver::porosity() {
+  impl_->externally_modified = true;
+  return impl_->alpha;
+}
 
 long long GasSolver::cell_updates() const { return impl_->cell_updates; }
+
+void GasSolver::resting_gas(RestingGas& out) const {
+  const Impl& m = *impl_;
+  const RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));
+  out.valid = ref.valid;
+  out.p = ref.p;
+  out.T = ref.T;
+  out.first_resting.resize(static_cast<std::size_t>(m.ny));
+  const int cells = m.nx + 2 * m.ng;
+#pragma omp parallel for if (m.threaded) schedule(static)
+  for (int j = 0; j < m.ny; ++j) {
+    const std::size_t c = m.at(-m.ng, j);
+    const RowView row{m.u.data() + c, m.v.data() + c, m.p.data() + c, m.T.data() + c, cells};
+    out.first_resting[static_cast<std::size_t>(j)] = cells - resting_suffix(row, ref) - m.ng;
+  }
+}
 
 void GasSolver::initialize_porosity(const Field2D& alpha_g) {
   Impl& m = *impl_;
@@ -873,6 +919,7 @@ Field2D& GasSolver::source(int k) { return impl_->source[static_cast<std::size_t
 
 Field2D& GasSolver::primitive_field(int k) {
   Impl& m = *impl_;
+  m.externally_modified = true;
   Field2D* fields[5] = {&m.rho, &m.u, &m.v, &m.p, &m.T};
   if (k < 0 || k > 4) throw std::out_of_range("GasSolver::primitive_field: k must be 0..4");
   return *fields[k];

@@ -10,6 +10,7 @@
 //  - primitives() exposes read-only rho, u, v, p, T, alpha_g on the interior+ghost layout.
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
@@ -47,6 +48,17 @@ class GasSolver {
   const GasConfig& config() const;
   GasPrimitives primitives() const;
   GasTotals totals() const;
+
+  /// The gas resting at the right-hand reference state (the cell (nx-1, ny-1) when it is at
+  /// rest): for each interior row j, first_resting[j] is the first cell index from which every
+  /// cell of the row up to the last ghost rests at it (nx + ghosts when none does). The
+  /// coupling skips parcels in such gas exactly (docs/coupling.md).
+  struct RestingGas {
+    bool valid = false;
+    double p = 0.0, T = 0.0;
+    std::vector<int> first_resting;
+  };
+  void resting_gas(RestingGas& out) const;
 
   /// Cell-stage updates done since construction (3 per cell and step without skipping;
   /// fewer where resting cells were skipped). For benchmarks and tests.

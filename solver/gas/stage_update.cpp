@@ -10,33 +10,29 @@
 namespace dustlift {
 namespace {
 
-/// rhs = -(F_{i+1} - F_i)/dx - (G_above - G_below)/dy + S for one variable.
-[[gnu::noinline]] void divergence_pass(const double* __restrict fx, const double* __restrict fy_below,
-                                       const double* __restrict fy_above, const double* __restrict source,
-                                       const double* __restrict inv_dx, double inv_dy, double* __restrict rhs,
-                                       int n) {
+/// One variable's stage: rhs = -(F_{i+1} - F_i)/dx - (G_above - G_below)/dy + S (+ the
+/// well-balanced pressure parts for the momenta), U <- U0 + c (U - U0 + dt rhs), and
+/// changed[i] = 1 where U changed. One pass, so the rhs is never stored.
+template <int PressureAxis>
+[[gnu::noinline]] void variable_pass(const double* __restrict fx, const double* __restrict fy_below,
+                                     const double* __restrict fy_above, const double* __restrict source,
+                                     const double* __restrict inv_dx, double inv_dy,
+                                     const double* __restrict p_face_lo, const double* __restrict p_face_hi,
+                                     const double* __restrict a_lo, const double* __restrict a,
+                                     const double* __restrict a_hi, const double* __restrict p,
+                                     const double* __restrict u0, double* __restrict u, double* __restrict changed,
+                                     double dt, double c, int n) {
   for (int i = 0; i < n; ++i) {
-    rhs[i] = -(fx[i + 1] - fx[i]) * inv_dx[i] - (fy_above[i] - fy_below[i]) * inv_dy + source[i];
-  }
-}
-
-/// The well-balanced pressure part of a grad p along one direction: with p~ = p_i at both
-/// faces it is exactly zero whatever the face porosities.
-[[gnu::noinline]] void pressure_pass(const double* __restrict a_lo, const double* __restrict a,
-                                     const double* __restrict a_hi, const double* __restrict p_face_lo,
-                                     const double* __restrict p_face_hi, const double* __restrict p,
-                                     const double* __restrict inv_h, double* __restrict rhs, int n) {
-  for (int i = 0; i < n; ++i) {
-    const double a_plus = 0.5 * (a[i] + a_hi[i]), a_minus = 0.5 * (a_lo[i] + a[i]);
-    rhs[i] -= (a_plus * (p_face_hi[i] - p[i]) - a_minus * (p_face_lo[i] - p[i])) * inv_h[i];
-  }
-}
-
-/// U <- U0 + c (U - U0 + dt rhs); changed[i] becomes 1 where any component changed.
-[[gnu::noinline]] void combine_pass(const double* __restrict u0, double* __restrict u, const double* __restrict rhs,
-                                    double* __restrict changed, double dt, double c, int n) {
-  for (int i = 0; i < n; ++i) {
-    const double q = u0[i] + c * ((u[i] - u0[i]) + dt * rhs[i]);
+    double rhs = -(fx[i + 1] - fx[i]) * inv_dx[i] - (fy_above[i] - fy_below[i]) * inv_dy + source[i];
+    if constexpr (PressureAxis != 0) {
+      // a grad p in well-balanced form: with p~ = p_i at both faces exactly zero whatever
+      // the face porosities. The faces are the row's x-faces (i, i+1) or the y-faces below
+      // and above.
+      const double a_plus = 0.5 * (a[i] + a_hi[i]), a_minus = 0.5 * (a_lo[i] + a[i]);
+      const double h = PressureAxis == 1 ? inv_dx[i] : inv_dy;
+      rhs -= (a_plus * (p_face_hi[i] - p[i]) - a_minus * (p_face_lo[i] - p[i])) * h;
+    }
+    const double q = u0[i] + c * ((u[i] - u0[i]) + dt * rhs);
     changed[i] = q != u[i] ? 1.0 : changed[i];
     u[i] = q;
   }
@@ -93,16 +89,18 @@ template <class Thermo>
 int stage_update_row(const Thermo& th, const StageRow& r, const StageScratch& s, double dt, double c_new) {
   const int n = r.n;
   if (n <= 0) return -1;
-  for (int k = 0; k < 4; ++k) {
-    divergence_pass(r.fx[k], r.fy_below[k], r.fy_above[k], r.source[k], r.inv_dx, r.inv_dy, s.rhs[k], n);
-  }
-  pressure_pass(r.alpha - 1, r.alpha, r.alpha + 1, r.fx_pressure, r.fx_pressure + 1, r.p, r.inv_dx, s.rhs[1], n);
-  // The y-direction has one inverse height for the whole row: pass it as a constant array.
-  for (int i = 0; i < n; ++i) s.T[i] = r.inv_dy;
-  pressure_pass(r.alpha_below, r.alpha, r.alpha_above, r.fy_pressure_below, r.fy_pressure_above, r.p, s.T, s.rhs[2],
-                n);
   for (int i = 0; i < n; ++i) s.changed[i] = 0.0;
-  for (int k = 0; k < 4; ++k) combine_pass(r.U0[k], r.U[k], s.rhs[k], s.changed, dt, c_new, n);
+  const double* const none = nullptr;
+  variable_pass<0>(r.fx[0], r.fy_below[0], r.fy_above[0], r.source[0], r.inv_dx, r.inv_dy, none, none, none, none,
+                   none, none, r.U0[0], r.U[0], s.changed, dt, c_new, n);
+  variable_pass<1>(r.fx[1], r.fy_below[1], r.fy_above[1], r.source[1], r.inv_dx, r.inv_dy, r.fx_pressure,
+                   r.fx_pressure + 1, r.alpha - 1, r.alpha, r.alpha + 1, r.p, r.U0[1], r.U[1], s.changed, dt, c_new,
+                   n);
+  variable_pass<2>(r.fx[2], r.fy_below[2], r.fy_above[2], r.source[2], r.inv_dx, r.inv_dy, r.fy_pressure_below,
+                   r.fy_pressure_above, r.alpha_below, r.alpha, r.alpha_above, r.p, r.U0[2], r.U[2], s.changed, dt,
+                   c_new, n);
+  variable_pass<0>(r.fx[3], r.fy_below[3], r.fy_above[3], r.source[3], r.inv_dx, r.inv_dy, none, none, none, none,
+                   none, none, r.U0[3], r.U[3], s.changed, dt, c_new, n);
   decode_pass(r.U[0], r.U[1], r.U[2], r.U[3], r.alpha, s.rho, s.u, s.v, s.e, n);
   th.temperatures(s.e, r.T, s.T, n);
   return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[0], r.U[1], r.U[2], r.U[3], r.rho, r.u,

@@ -125,6 +125,15 @@ class ThermallyPerfectAir {
     h = R_ * (low ? h_low : h_high);
   }
 
+  /// enthalpy_and_cp() for T below the range break (1000 K), where it gives the same values.
+  void enthalpy_and_cp_low(double T, double& h, double& cp) const {
+    using nasa7::kAirLow;
+    cp = R_ * nasa7::cp_over_r(kAirLow, T);
+    h = R_ * (nasa7::h_over_r(kAirLow, T) - kAirLow.a[5]);
+  }
+  /// Temperature below which only the low-range polynomials are needed.
+  static constexpr double low_range_limit() { return nasa7::kRangeBreak; }
+
   /// temperature() for a row of n cells: e and guesses in, T out (T may alias neither).
   /// Two branch-free Newton steps for all cells (vectorised; defined in thermo_batch.cpp),
   /// accepted where the second step was below 1e-7 T inside the bracket, else the

@@ -53,6 +53,9 @@ class GordonWilkeAirTable {
     const double w = x - static_cast<double>(k);
     return {mu_[k] + w * (mu_[k + 1] - mu_[k]), lambda_[k] + w * (lambda_[k + 1] - lambda_[k])};
   }
+  /// The same for n temperatures (a row of cells): mu[i], lambda[i] of T[i] (transport_rows.cpp,
+  /// vectorised; values identical to operator()).
+  void apply(const double* T, double* mu, double* lambda, int n) const;
 
  private:
   static constexpr double kTmin = 20.0, kTmax = 6000.0, kInvStep = 1.0;  // 1 K spacing

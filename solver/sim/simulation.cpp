@@ -26,6 +26,7 @@ Simulation::Simulation(const Scene& scene)
   if (scene_.particles.enabled) {
     parcels_ = std::make_unique<ParcelSystem>(make_layer_system(scene_.particles));
     coupling_ = std::make_unique<GasParticleCoupling>(grid_, scene_.coupling, scene_.gas, scene_.particles);
+    coupling_->set_skip_resting(scene_.run.skip_at_rest);
     coupling_->initialize(*gas_, *parcels_);
   }
 }
@@ -98,8 +99,12 @@ std::string Simulation::work_summary() const {
     << (full > 0.0 ? 100.0 * static_cast<double>(gas_->cell_updates() - first_cell_updates_) / full : 0.0)
     << " % of the full grid)";
   if (parcels_) {
-    s << "; DEM " << parcels_->steps() - first_dem_steps_ << " sub-steps of " << parcels_->size() << " parcels, "
-      << parcels_->neighbour_rebuilds() - first_rebuilds_ << " neighbour rebuilds";
+    const long long substeps = parcels_->steps() - first_dem_steps_;
+    const long long stepped = parcels_->parcel_substeps() - first_parcel_substeps_;
+    s << "; DEM " << substeps << " sub-steps of " << parcels_->size() << " parcels, " << stepped
+      << " parcel-sub-steps ("
+      << (substeps > 0 ? 100.0 * static_cast<double>(stepped) / (static_cast<double>(substeps) * parcels_->size()) : 0.0)
+      << " %), " << parcels_->neighbour_rebuilds() - first_rebuilds_ << " neighbour rebuilds";
   }
   s.precision(3);
   s << "\ntime: gas " << timings_.gas << " s";
@@ -157,6 +162,7 @@ void Simulation::run(const std::string& output_dir) {
   first_cell_updates_ = gas_->cell_updates();
   first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
   first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
+  first_parcel_substeps_ = parcels_ ? parcels_->parcel_substeps() : 0;
   // A restarted run's first frame is the restored state (the segment's start).
   for (auto& o : observers_) o->on_start(view(output_dir));
   double dt = 0.0;

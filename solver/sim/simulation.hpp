@@ -92,6 +92,7 @@ class Simulation {
   Timings timings_;
   // Counters at the start of run(), for work_summary().
   long long first_step_ = 0, first_cell_updates_ = 0, first_dem_steps_ = 0, first_rebuilds_ = 0;
+  long long first_parcel_substeps_ = 0;
 };
 
 /// Ghost layers the gas scheme needs (MUSCL: 2).

@@ -1,0 +1,102 @@
+#pragma once
+// Deposits of parcels into grid cells (eqs. 12-15) in parallel, with exactly the sums a
+// serial pass in parcel order gives (so results do not depend on the thread count):
+// the parcels are split into contiguous chunks, one per thread (they are sorted along x by
+// the DEM, so each chunk covers a band of grid columns); a column that two chunks' stencils
+// reach is "shared". Phase A: every chunk adds, in parcel order, all its contributions to
+// cells outside the shared columns (each such cell hears from one chunk only). Phase B: the
+// contributions to the shared columns, serially in parcel order. Each cell's sum is then
+// added up in parcel order, as in the serial pass.
+#include <omp.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "solver/coupling/grid_transfer.hpp"
+
+namespace dustlift {
+
+class ParallelDeposit {
+ public:
+  /// Plans the chunks for these stencils (parcel order) on a grid of nx columns.
+  void plan(const std::vector<DepositStencil>& stencils, int nx, std::size_t parallel_minimum) {
+    const std::size_t n = stencils.size();
+    const int threads = n >= parallel_minimum ? std::max(1, omp_get_max_threads()) : 1;
+    chunk_start_.resize(static_cast<std::size_t>(threads) + 1);
+    for (int c = 0; c <= threads; ++c) {
+      chunk_start_[static_cast<std::size_t>(c)] = n * static_cast<std::size_t>(c) / static_cast<std::size_t>(threads);
+    }
+    // Columns each chunk reaches; a column reached by two chunks is shared.
+    reach_count_.assign(static_cast<std::size_t>(nx), 0);
+    lo_.assign(static_cast<std::size_t>(threads), nx);
+    hi_.assign(static_cast<std::size_t>(threads), -1);
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+    for (int c = 0; c < threads; ++c) {
+      int lo = nx, hi = -1;
+      for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
+        const DepositStencil& d = stencils[k];
+        for (int m = 0; m < d.count; ++m) {
+          lo = std::min(lo, d.i[static_cast<std::size_t>(m)]);
+          hi = std::max(hi, d.i[static_cast<std::size_t>(m)]);
+        }
+      }
+      lo_[static_cast<std::size_t>(c)] = lo;
+      hi_[static_cast<std::size_t>(c)] = hi;
+    }
+    for (int c = 0; c < threads; ++c) {
+      for (int i = lo_[static_cast<std::size_t>(c)]; i <= hi_[static_cast<std::size_t>(c)]; ++i) {
+        ++reach_count_[static_cast<std::size_t>(i)];
+      }
+    }
+    threads_ = threads;
+    // The parcels that reach a shared column, in parcel order (chunk by chunk).
+    deferred_by_chunk_.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+    for (int c = 0; c < threads; ++c) {
+      std::vector<std::size_t>& list = deferred_by_chunk_[static_cast<std::size_t>(c)];
+      list.clear();
+      if (threads == 1) continue;
+      for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
+        const DepositStencil& d = stencils[k];
+        bool reaches = false;
+        for (int m = 0; m < d.count; ++m) reaches = reaches || shared(d.i[static_cast<std::size_t>(m)]);
+        if (reaches) list.push_back(k);
+      }
+    }
+  }
+
+  bool shared(int i) const { return reach_count_[static_cast<std::size_t>(i)] > 1; }
+
+  /// Calls add(k, m) for every stencil entry m of every parcel k, in the two phases above.
+  template <class Add>
+  void run(const std::vector<DepositStencil>& stencils, Add&& add) const {
+#pragma omp parallel for schedule(static, 1) num_threads(threads_) if (threads_ > 1)
+    for (int c = 0; c < threads_; ++c) {
+      for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
+        const DepositStencil& d = stencils[k];
+        for (int m = 0; m < d.count; ++m) {
+          if (!shared(d.i[static_cast<std::size_t>(m)])) add(k, m);
+        }
+      }
+    }
+    if (threads_ == 1) return;
+    // Phase B: the shared columns' contributions, in parcel order (the chunks are in order).
+    for (const std::vector<std::size_t>& list : deferred_by_chunk_) {
+      for (std::size_t k : list) {
+        const DepositStencil& d = stencils[k];
+        for (int m = 0; m < d.count; ++m) {
+          if (shared(d.i[static_cast<std::size_t>(m)])) add(k, m);
+        }
+      }
+    }
+  }
+
+ private:
+  int threads_ = 1;
+  std::vector<std::size_t> chunk_start_;
+  std::vector<int> reach_count_, lo_, hi_;
+  std::vector<std::vector<std::size_t>> deferred_by_chunk_;
+};
+
+}  // namespace dustlift
