@@ -255,7 +255,8 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
     s.dpdx = cfg_.pressure_force ? st.apply(dpdx_) : 0.0;
     s.dpdy = cfg_.pressure_force ? st.apply(dpdy_) : 0.0;
     const ParcelAtSample pa{ps.vx[k], ps.vy[k], ps.omega[k], d};
-    const double slip = std::hypot(s.u - pa.vx, s.v - pa.vy);
+    const double sx = s.u - pa.vx, sy = s.v - pa.vy;
+    const double slip = std::sqrt(sx * sx + sy * sy);
     const double re = s.rho * slip * d / s.mu;
     SubstepCoefficients c;
     for (const auto& m : models_) m->coefficients(s, pa, slip, re, c);
@@ -444,7 +445,7 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       // Two steps: the last step was then a full step at rest, so its stored force parts and
       // samples are exactly what this step would give.
       if (rest_steps[k] < 2.0) front = std::max(front, ps.x[k]);
-      v_max = std::max(v_max, std::hypot(ps.vx[k], ps.vy[k]));
+      v_max = std::max(v_max, std::sqrt(ps.vx[k] * ps.vx[k] + ps.vy[k] * ps.vy[k]));
       d_max = std::max(d_max, ps.diameter[k]);
     }
     if (front == -std::numeric_limits<double>::infinity()) {

@@ -3,6 +3,8 @@
 // are close in memory; the list keeps every parcel within r_i + r_j + skin, and is
 // rebuilt when some parcel has moved more than skin/2 since the last build. The
 // tangential history of each pair is carried over by matching partner ids.
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -25,7 +27,7 @@ void permute(std::vector<T>& v, const std::vector<std::int32_t>& order, std::vec
 
 }  // namespace
 
-void ParcelSystem::sort_by_cell() {
+void ParcelSystem::sort_by_cell(bool permute_data) {
   const std::size_t n = size();
   const DemDomain& d = cfg_.domain;
   // Cells at least as wide as the largest cutoff so that all candidates lie in the 3x3 block.
@@ -67,17 +69,28 @@ void ParcelSystem::sort_by_cell() {
   for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
   for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
   order_.resize(n);
-  scratch_i_.assign(cell_start_.begin(), cell_start_.end() - 1);  // fill cursors
-  for (std::size_t i = 0; i < n; ++i) order_[scratch_i_[cell_of_[i]]++] = static_cast<std::int32_t>(i);
+  cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);  // fill cursors
+  for (std::size_t i = 0; i < n; ++i) order_[cursor_[cell_of_[i]]++] = static_cast<std::int32_t>(i);
 
+  if (!permute_data) {
+    // The parcels keep their places (they moved less than their skins since the last sort,
+    // so memory order is still close to cell order); the cells list them by index instead.
+    members_.swap(order_);
+    old_index_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) old_index_[i] = static_cast<std::int32_t>(i);
+    return;
+  }
   for_each_permuted_column([this](std::vector<double>& v) { permute(v, order_, scratch_d_); });
   permute(id, order_, scratch_i_);
-  scratch_d_.resize(n * kWallCount);
+  scratch_wall_.resize(n * kWallCount);
   for (std::size_t k = 0; k < n; ++k) {
-    for (int w = 0; w < kWallCount; ++w) scratch_d_[k * kWallCount + w] = wall_delta[order_[k] * kWallCount + w];
+    for (int w = 0; w < kWallCount; ++w) scratch_wall_[k * kWallCount + w] = wall_delta[order_[k] * kWallCount + w];
   }
-  wall_delta.swap(scratch_d_);
+  wall_delta.swap(scratch_wall_);
   permute(cell_of_, order_, scratch_i_);
+  old_index_.swap(order_);
+  members_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) members_[i] = static_cast<std::int32_t>(i);
 }
 
 void ParcelSystem::rebuild_neighbours() {
@@ -90,7 +103,10 @@ void ParcelSystem::rebuild_neighbours() {
     old_partner_id_.resize(nbr_index.size());
     for (std::size_t k = 0; k < nbr_index.size(); ++k) old_partner_id_[k] = id[nbr_index[k]];
   }
-  sort_by_cell();  // order_[new] = old
+  // The data are re-sorted by cell every kSortEvery rebuilds (and at the first): moving 40
+  // columns costs more than the list itself, and memory order decays slowly.
+  constexpr long long kSortEvery = 8;
+  sort_by_cell(!had_list || rebuilds_ % kSortEvery == 0);  // old_index_[new] = old
 
   const DemDomain& d = cfg_.domain;
   const bool periodic = d.periodic_x;
@@ -138,7 +154,8 @@ void ParcelSystem::rebuild_neighbours() {
           rx -= image * cells_x_;
         }
         const int cell = cell_index(rx, ry);
-        for (std::int32_t j = cell_start_[cell]; j < cell_start_[cell + 1]; ++j) {
+        for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
+          const std::int32_t j = members_[static_cast<std::size_t>(q)];
           if (static_cast<std::size_t>(j) != i) f(j, image);
         }
       }
@@ -154,15 +171,27 @@ void ParcelSystem::rebuild_neighbours() {
   // on both sides (a slow partner would not find them in its 3x3 block).
   const double min_cell = std::min(cell_dx_, cell_dy_);
   const std::size_t n_fast = fast_.size();
-  fast_pairs_.clear();
-  for (std::size_t f = 0; f < n_fast; ++f) {
-    const auto i = static_cast<std::size_t>(fast_[f]);
-    const double r = 2.0 * radius_max_ + half_skin_[i] + s_max;
-    const int block = std::max(1, static_cast<int>(std::ceil(r / min_cell)));
-    for_each_nearby(i, block, [&](std::int32_t j, int image) {
-      if (listed(i, j, image)) fast_pairs_.push_back({static_cast<std::int32_t>(i), j, static_cast<std::int8_t>(image)});
-    });
+  // In parallel over contiguous ranges of fast parcels, joined in order (thread-independent).
+  const int threads = n_fast >= 64 ? omp_get_max_threads() : 1;
+  fast_pairs_by_thread_.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const int t = omp_get_thread_num();
+    std::vector<FastPair>& mine = fast_pairs_by_thread_[static_cast<std::size_t>(t)];
+    mine.clear();
+    const std::size_t f0 = n_fast * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+    const std::size_t f1 = n_fast * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
+    for (std::size_t f = f0; f < f1; ++f) {
+      const auto i = static_cast<std::size_t>(fast_[f]);
+      const double r = 2.0 * radius_max_ + half_skin_[i] + s_max;
+      const int block = std::max(1, static_cast<int>(std::ceil(r / min_cell)));
+      for_each_nearby(i, block, [&](std::int32_t j, int image) {
+        if (listed(i, j, image)) mine.push_back({static_cast<std::int32_t>(i), j, static_cast<std::int8_t>(image)});
+      });
+    }
   }
+  fast_pairs_.clear();
+  for (const auto& part : fast_pairs_by_thread_) fast_pairs_.insert(fast_pairs_.end(), part.begin(), part.end());
   // Slow partners of fast parcels, sorted by (slow parcel, fast parcel): their extra slots.
   extra_pairs_.clear();
   for (const FastPair& fp : fast_pairs_) {
@@ -222,7 +251,7 @@ void ParcelSystem::rebuild_neighbours() {
     });
     if (!had_list) continue;
     // Carry over the history of pairs that were listed before.
-    const std::int32_t o = order_[i];
+    const std::int32_t o = old_index_[i];
     for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
       const std::int32_t pid = id[nbr_index[s]];
       for (std::int32_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {

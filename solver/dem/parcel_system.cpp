@@ -52,16 +52,18 @@ const std::vector<ParcelColumnSpec>& ParcelSystem::builtin_specs() {
   return specs;
 }
 
-std::vector<std::vector<double>*> ParcelSystem::builtin_columns() {
+std::array<std::vector<double>*, ParcelSystem::kBuiltinColumns> ParcelSystem::builtin_columns() {
   return {&x,           &y,           &vx,          &vy,          &omega,       &temperature,
           &diameter,    &radius,      &mass,        &inertia,     &n_real,      &x_initial,
           &y_initial,   &contact_fx,  &contact_fy,  &contact_torque, &drag_fx,  &drag_fy,
           &magnus_fx,   &magnus_fy,   &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate};
 }
 
-std::vector<const std::vector<double>*> ParcelSystem::builtin_columns() const {
-  auto cols = const_cast<ParcelSystem*>(this)->builtin_columns();
-  return {cols.begin(), cols.end()};
+std::array<const std::vector<double>*, ParcelSystem::kBuiltinColumns> ParcelSystem::builtin_columns() const {
+  const auto cols = const_cast<ParcelSystem*>(this)->builtin_columns();
+  std::array<const std::vector<double>*, kBuiltinColumns> out{};
+  for (std::size_t k = 0; k < kBuiltinColumns; ++k) out[k] = cols[k];
+  return out;
 }
 
 void ParcelSystem::for_each_permuted_column(const std::function<void(std::vector<double>&)>& f) {

@@ -12,6 +12,7 @@
 // Determinism: every parcel gathers its own contacts in neighbour-list order (each pair is
 // evaluated from both sides, bitwise symmetrically); no atomics, no reductions other than
 // max. Results are identical for any OpenMP thread count.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -165,9 +166,10 @@ class ParcelSystem {
 
   /// The built-in double columns (state, properties, force parts) with their specs, and
   /// their arrays; same order for both.
+  static constexpr std::size_t kBuiltinColumns = 24;
   static const std::vector<ParcelColumnSpec>& builtin_specs();
-  std::vector<std::vector<double>*> builtin_columns();
-  std::vector<const std::vector<double>*> builtin_columns() const;
+  std::array<std::vector<double>*, kBuiltinColumns> builtin_columns();
+  std::array<const std::vector<double>*, kBuiltinColumns> builtin_columns() const;
 
   /// Sets the sub-step gas forcing (the coupling, once). Its columns must be attached here.
   void set_gas_forcing(const GasForcing& f);
@@ -225,7 +227,7 @@ class ParcelSystem {
  private:
   void step_with_parts(double dt, bool store_parts);
   void rebuild_neighbours();
-  void sort_by_cell();
+  void sort_by_cell(bool permute_data);
   void compute_contacts(double dt);
   void integrate(double dt, bool store_parts);
   void integrate_forced(double dt, bool store_parts);
@@ -263,6 +265,9 @@ class ParcelSystem {
   int cell_index(int cx, int cy) const { return x_major_ ? cx * cells_y_ + cy : cy * cells_x_ + cx; }
   double cell_dx_ = 1.0, cell_dy_ = 1.0;
   std::vector<std::int32_t> cell_of_, cell_start_, order_;
+  std::vector<std::int32_t> members_;    ///< parcels of each cell: members_[cell_start_[c] ..]
+  std::vector<std::int32_t> cursor_;     ///< counting-sort fill positions, one per cell
+  std::vector<std::int32_t> old_index_;  ///< index before the last rebuild, per parcel
 
   // Per-parcel skins of the last rebuild (half_skin_: how far the parcel may move) and the
   // fast parcels' pairs (see rebuild_neighbours).
@@ -273,10 +278,11 @@ class ParcelSystem {
   std::vector<double> half_skin_, inv_skin2_;
   std::vector<std::int32_t> fast_, fast_start_, extra_start_;
   std::vector<FastPair> fast_pairs_, extra_pairs_;
+  std::vector<std::vector<FastPair>> fast_pairs_by_thread_;
   double radius_max_ = 0.0, cutoff_ = 0.0;
 
   // Rebuild scratch (kept to avoid reallocation).
-  std::vector<double> scratch_d_;
+  std::vector<double> scratch_d_, scratch_wall_;
   std::vector<std::int32_t> scratch_i_;
   std::vector<std::int32_t> old_offset_, old_partner_id_;
   std::vector<double> old_delta_;
