@@ -5,27 +5,16 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <new>
 #include <string>
 #include <vector>
 
 #include "solver/dem/parcel_system.hpp"
 #include "solver/sim/simulation.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
+#include "support/allocation_counter.hpp"
 
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+using test_support::g_allocations;
 
 using namespace dustlift;
 

@@ -2,23 +2,12 @@
 // construction): counted by replacing the global operator new in this test executable.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 
 #include "solver/gas/gas_solver.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
+#include "support/allocation_counter.hpp"
 
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+using test_support::g_allocations;
 
 using namespace dustlift;
 
