@@ -29,6 +29,18 @@ void SeriesTable::clear() {
   csv_needs_rewrite_ = true;
 }
 
+void SeriesTable::assign(std::vector<std::vector<double>> columns) {
+  if (columns.size() != columns_.size())
+    throw std::invalid_argument(fmt::format("SeriesTable '{}': {} columns given, it has {}", name_, columns.size(),
+                                            columns_.size()));
+  for (const auto& c : columns) {
+    if (c.size() != columns.front().size())
+      throw std::invalid_argument(fmt::format("SeriesTable '{}': columns of different lengths", name_));
+  }
+  data_ = std::move(columns);
+  csv_needs_rewrite_ = true;
+}
+
 SeriesSink::SeriesSink(std::string output_dir)
     : series_dir_((std::filesystem::path(output_dir) / "series").string()) {}
 
@@ -53,6 +65,7 @@ void write_csv_rows(std::ofstream& out, const SeriesTable& table, std::size_t fr
 }  // namespace
 
 void SeriesSink::write(SeriesTable& table) const {
+  if (series_dir_.empty()) throw std::logic_error("SeriesSink: no output folder");
   std::filesystem::create_directories(series_dir_);
   const std::string path = csv_path(table);
   const bool rewrite = table.csv_needs_rewrite() || !std::filesystem::exists(path);

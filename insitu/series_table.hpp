@@ -5,6 +5,7 @@
 // "units"). VTK-free and HDF5-free header.
 #include <cstddef>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ class SeriesTable {
   /// Drops every row (for tables recomputed as a whole, e.g. band averages);
   /// the next SeriesSink::write rewrites the CSV instead of appending.
   void clear();
+  /// Replaces every row by `columns` (one vector per column, equally long; a checkpoint's
+  /// copy); the next SeriesSink::write rewrites the CSV. Throws std::invalid_argument when
+  /// the shape does not fit.
+  void assign(std::vector<std::vector<double>> columns);
 
   // Bookkeeping for SeriesSink: rows already in the CSV file.
   std::size_t csv_rows_written() const { return csv_rows_written_; }
@@ -54,6 +59,7 @@ class SeriesTable {
 /// so a killed run leaves both files readable up to the last output.
 class SeriesSink {
  public:
+  SeriesSink() = default;  ///< no folder yet: write() throws until one is given
   explicit SeriesSink(std::string output_dir);
   void write(SeriesTable& table) const;
   std::string csv_path(const SeriesTable& table) const;

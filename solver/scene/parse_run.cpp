@@ -54,7 +54,8 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   out.interval = t.number("interval", out.interval, Range::non_negative());
   out.vtk = t.boolean("vtk", out.vtk);
   out.shock_threshold = t.number("shock_threshold", out.shock_threshold, Range::open(0.0, 10.0));
-  out.checkpoint_interval = t.number("checkpoint_interval", out.checkpoint_interval, Range::non_negative());
+  out.checkpoint_interval = t.number("checkpoint_interval", out.interval, Range::non_negative());
+  out.checkpoint_wall_interval = t.number("checkpoint_wall_interval", out.checkpoint_wall_interval, Range::non_negative());
   if (!dem.enabled) {
     t.finish();
     return;

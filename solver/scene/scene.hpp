@@ -39,8 +39,13 @@ struct OutputConfig {
   double band_duration = 0.0;             ///< s, last bin end (default: run end time)
   double contact_window = 1e-5;           ///< s, contact-force averaging window (paper: 0.01 ms)
   double shock_threshold = 0.05;          ///< relative pressure rise marking the shock
-  /// s of simulated time between checkpoints (OUTDIR/checkpoint.h5); 0: only at the end.
+  /// s of simulated time between checkpoints (OUTDIR/checkpoint.h5); default: output.interval;
+  /// 0: none by simulated time.
   double checkpoint_interval = 0.0;
+  /// s of wall time after which the next step writes a checkpoint (so a long run never loses
+  /// more than this); 0: none by wall time. A checkpoint is also written at the end and on
+  /// SIGINT/SIGTERM.
+  double checkpoint_wall_interval = 300.0;
 };
 
 struct GridConfig {

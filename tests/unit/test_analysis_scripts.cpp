@@ -64,7 +64,7 @@ TEST_F(AnalysisScripts, MakeFiguresFitsTheShockSpeedAndPlotsEverySeriesFamily) {
     sink.write(surface);
   }
   std::vector<double> x0{0.01}, y0{0.001}, y{0.0012}, fx{0.1}, fy{0.2}, arrival{0.0}, w{5.0};
-  BandForceSeries bands(dir.string(), {Band{"top", 0.0, 0.1, 0.0, 0.002}});
+  BandForceSeries bands({Band{"top", 0.0, 0.1, 0.0, 0.002}});
   for (int k = 0; k < 5; ++k) {
     BandParcelsView v;
     v.count = 1;
@@ -75,7 +75,7 @@ TEST_F(AnalysisScripts, MakeFiguresFitsTheShockSpeedAndPlotsEverySeriesFamily) {
     v.gas_rotation = w;
     bands.add(v, k * 1e-6);
   }
-  bands.write();
+  bands.write(sink);
   const auto [status, output] = run(script("make_figures.py") + " " + dir.string());
   ASSERT_EQ(status, 0) << output;
   std::smatch m;

@@ -130,10 +130,13 @@ TEST(BadInput, RestartRowsNeedingARealCheckpoint) {
   r = run_cli("run --restart " + checkpoint.string() + " --out " + out.string() + " --set grid.x.cells=16");
   expect_bad_input(r, "grid.x.cells", out, "restart_changes_physics");
 
-  // A restart must not overwrite the outputs of the run it continues.
-  r = run_cli("run --restart " + checkpoint.string() + " --out " + (dir / "first").string());
+  // A restart into another folder that holds files (here: a scene) must not mix them in.
+  fs::create_directories(dir / "busy");
+  write_file(dir / "busy" / "notes.txt", "mine");
+  r = run_cli("run --restart " + checkpoint.string() + " --out " + (dir / "busy").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("must not be the folder of its checkpoint"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("output folder '" + (dir / "busy").string() + "': not empty"), std::string::npos) << r.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "busy"), fs::directory_iterator()), 1);
 
   // Truncated copy.
   std::string bytes;
