@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/series_table.hpp"
 #include "solver/core/derivatives.hpp"
@@ -60,7 +61,7 @@ class NearLayerObserver final : public Observer {
 
  private:
   void write(const StateView& view) {
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
     sink_->write(table_);
   }
   NearLayerOptions options_;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/shock_position.hpp"
 #include "solver/core/derivatives.hpp"
@@ -22,7 +23,7 @@ class VtkParcelWriter final : public Observer {
   void on_output(const StateView& view) override {
     if (!writer_) writer_ = std::make_unique<ParcelSeriesWriter>(view.output_dir);
     if (writer_->files().last_time_is(view.time)) return;  // on_finish right after that output
-    writer_->write(parcels_of_(view), view.time);
+    writer_->write(parcels_of_(view), view.time, vtk_file_info_of(view));
   }
 
   std::string state_key() const override { return "parcels_vtk"; }
@@ -82,7 +83,7 @@ class BandForceObserver final : public Observer {
 
  private:
   void write(const StateView& view) {
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
     series_.write(*sink_);
   }
   void sample(const StateView& view) {

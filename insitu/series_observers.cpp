@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/series_table.hpp"
 #include "insitu/shock_position.hpp"
@@ -73,13 +74,13 @@ class SurfaceHeightObserver final : public Observer {
 
  private:
   void write(const StateView& view) {
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
     sink_->write(profile_);
     if (!options_.stations_x.empty()) sink_->write(stations_);
   }
   static std::vector<SeriesColumn> station_columns(const std::vector<double>& xs) {
     std::vector<SeriesColumn> c{{"time", "s"}};
-    for (double x : xs) c.push_back({fmt::format("height_at_x{:.6g}", x), "m"});
+    for (double x : xs) c.push_back({"height_at_x" + number_in_identifier(x), "m"});
     return c;
   }
   SurfaceHeightOptions options_;
@@ -116,7 +117,7 @@ class ShockPositionObserver final : public Observer {
 
  private:
   void write(const StateView& view) {
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
     sink_->write(table_);
   }
   void sample(const StateView& view) {

@@ -6,6 +6,7 @@
 
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
 #include "insitu/vtk_writers.hpp"
 
 namespace dustlift {
@@ -23,7 +24,7 @@ class VtkGasWriter final : public Observer {
     if (files_->last_time_is(view.time)) return;  // on_finish right after the output of that time
     gather_gas_cells(*view.grid, view.primitives, view.alpha_p,
                      [&](int i, int j) { return sound_speed_(view, i, j); }, cells_);
-    write_gas_vtr(cells_, files_->next_path(view.time));
+    write_gas_vtr(cells_, files_->next_path(view.time), vtk_file_info_of(view));
     files_->commit(view.time);
   }
 

@@ -5,7 +5,10 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -58,6 +61,18 @@ void configure_binary_zlib(vtkXMLWriter* writer, const std::string& path) {
   writer->SetCompressionLevel(1);
 }
 
+void add_field_data(vtkDataObject* data, const VtkFileInfo& info) {
+  vtkFieldData* fd = data->GetFieldData();
+  const double time[1] = {info.time};
+  fd->AddArray(scalar_array("TimeValue", time));
+  for (const auto& [name, text] : {std::pair{"code_version", &info.code_version}, std::pair{"command_line", &info.command_line}}) {
+    vtkNew<vtkStringArray> a;
+    a->SetName(name);
+    a->InsertNextValue(*text);
+    fd->AddArray(a);
+  }
+}
+
 void prepare_folder(const std::string& path) {
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
@@ -65,7 +80,7 @@ void prepare_folder(const std::string& path) {
 
 }  // namespace
 
-void write_gas_vtr(const GasCellArrays& gas, const std::string& path) {
+void write_gas_vtr(const GasCellArrays& gas, const std::string& path, const VtkFileInfo& info) {
   gas.check_sizes();
   if (gas.cells() == 0) throw std::invalid_argument("write_gas_vtr: empty grid");
   vtkNew<vtkRectilinearGrid> grid;
@@ -84,6 +99,7 @@ void write_gas_vtr(const GasCellArrays& gas, const std::string& path) {
   cd->AddArray(scalar_array("alpha_p", gas.alpha_p));
   cd->AddArray(scalar_array("vorticity", gas.vorticity));
   cd->SetActiveScalars("pressure");
+  add_field_data(grid, info);
 
   prepare_folder(path);
   vtkNew<vtkXMLRectilinearGridWriter> writer;
@@ -92,7 +108,7 @@ void write_gas_vtr(const GasCellArrays& gas, const std::string& path) {
   if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + path);
 }
 
-void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path) {
+void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path, const VtkFileInfo& info) {
   parcels.check_sizes();
   const auto n = static_cast<vtkIdType>(parcels.count);
   vtkNew<vtkPoints> points;
@@ -128,6 +144,15 @@ void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path)
   add2("force_drag", parcels.force_drag);
   add2("force_magnus", parcels.force_magnus);
   add2("force_pressure", parcels.force_pressure);
+  for (const auto& c : parcels.extra) add1(c.name.c_str(), c.values);
+  if (!parcels.id.empty()) {
+    vtkNew<vtkIntArray> id;
+    id->SetName("id");
+    id->SetNumberOfTuples(n);
+    for (vtkIdType k = 0; k < n; ++k) id->SetValue(k, parcels.id[static_cast<std::size_t>(k)]);
+    pd->AddArray(id);
+  }
+  add_field_data(poly, info);
 
   prepare_folder(path);
   vtkNew<vtkXMLPolyDataWriter> writer;
@@ -228,8 +253,8 @@ void VtkSeriesFiles::resume(State state, const std::string& previous_output_dir)
 ParcelSeriesWriter::ParcelSeriesWriter(const std::string& output_dir)
     : files_(output_dir, "parcels", "vtp") {}
 
-void ParcelSeriesWriter::write(const ParcelArraysView& parcels, double time) {
-  write_parcels_vtp(parcels, files_.next_path(time));
+void ParcelSeriesWriter::write(const ParcelArraysView& parcels, double time, const VtkFileInfo& info) {
+  write_parcels_vtp(parcels, files_.next_path(time), info);
   files_.commit(time);
 }
 

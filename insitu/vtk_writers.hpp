@@ -13,13 +13,22 @@
 
 namespace dustlift {
 
+/// Field data of a VTK file: what it is (simulated time; ParaView reads TimeValue) and how it
+/// was made.
+struct VtkFileInfo {
+  double time = 0.0;  ///< s
+  std::string code_version, command_line;
+};
+
 /// Writes a vtkRectilinearGrid (.vtr): nodes from x_nodes/y_nodes (z = 0), cell data
-/// density, velocity (3 comp., z = 0), pressure, temperature, mach, alpha_p, vorticity.
-void write_gas_vtr(const GasCellArrays& gas, const std::string& path);
+/// density, velocity (3 comp., z = 0), pressure, temperature, mach, alpha_p, vorticity;
+/// field data TimeValue, code_version, command_line.
+void write_gas_vtr(const GasCellArrays& gas, const std::string& path, const VtkFileInfo& info = {});
 
 /// Writes a vtkPolyData (.vtp): one vertex cell per parcel at (x, y, 0), point data
-/// named as the view's members (vectors as 3 components with z = 0).
-void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path);
+/// named as the view's members (vectors as 3 components with z = 0) and its extra columns;
+/// field data as the .vtr.
+void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path, const VtkFileInfo& info = {});
 
 /// Writes numbered files OUTDIR/vtk/<prefix>_NNNNNN.<ext> and keeps OUTDIR/<prefix>.pvd
 /// current. A write at the same time as the previous one overwrites that file. Each file is
@@ -64,7 +73,7 @@ class VtkSeriesFiles {
 class ParcelSeriesWriter {
  public:
   explicit ParcelSeriesWriter(const std::string& output_dir);
-  void write(const ParcelArraysView& parcels, double time);
+  void write(const ParcelArraysView& parcels, double time, const VtkFileInfo& info = {});
   const PvdCollection& collection() const { return files_.collection(); }
   VtkSeriesFiles& files() { return files_; }
   const VtkSeriesFiles& files() const { return files_; }
