@@ -87,6 +87,7 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
     const bool rightward = ic.kind != InitialCondition::Kind::Riemann || ic.left.p > ic.right.p;
     if (rightward) observers.push_back(make_shock_position_observer(shock));
   }
+  if (!out.probes.empty()) observers.push_back(make_probe_observer({out.probes, out.probe_interval}));
   if (!scene.particles.enabled) return observers;
 
   if (out.vtk) observers.push_back(make_vtk_parcel_writer(parcel_arrays_of));

@@ -89,7 +89,9 @@ std::vector<std::string> Simulation::enabled_effects() const {
   if (coupling_) {
     for (const std::string& m : coupling_->model_descriptions()) e.push_back(m);
   }
-  if (d.gravity_y != 0.0) e.push_back("gravity on the parcels");
+  if (d.gravity_x != 0.0 || d.gravity_y != 0.0) {
+    e.push_back("gravity on the parcels: (" + fmt_number(d.gravity_x) + ", " + fmt_number(d.gravity_y) + ") m/s^2");
+  }
   return e;
 }
 

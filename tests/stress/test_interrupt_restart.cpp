@@ -35,7 +35,8 @@ using dustlift::testing::write_file;
 namespace {
 
 /// A Mach 1.44 shock over a 16 mm x 2 mm layer (2,404 parcels, drag, Magnus, pressure force),
-/// 0.5 mm cells, outputs every 5 us, 20 us in ~93 steps (about half a second).
+/// 0.5 mm cells, outputs every 5 us, a pressure gauge every step, 20 us in ~93 steps (about
+/// half a second).
 const char* kShockOverDust = R"([run]
 name = "mini"
 end_time = 2.0e-5
@@ -70,6 +71,10 @@ magnus_coefficient = 1.0
 pressure_force = true
 [output]
 interval = 5.0e-6
+[[output.probes]]
+name = "gauge"
+x = 0.008
+y = 0.001
 )";
 
 struct Entry {
@@ -126,7 +131,7 @@ void expect_same_run(const fs::path& reference, const fs::path& continued) {
     ++files;
     EXPECT_EQ(read_bytes(f.path()), read_bytes(continued / "series" / f.path().filename())) << f.path().filename();
   }
-  EXPECT_EQ(files, 6u);  // shock, surface (2), near layer, two bands
+  EXPECT_EQ(files, 7u);  // shock, surface (2), near layer, two bands, probes
   expect_consistent_collection(continued, "gas");
   expect_consistent_collection(continued, "parcels");
 }
