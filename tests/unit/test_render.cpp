@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -76,6 +77,40 @@ void write_synthetic_run(const fs::path& dir) {
     view.diameter = d;
     parcel_writer.write(view, t);
   }
+}
+
+/// Pixels whose RGB differ between two images of the same size, in rows [row0, row1) counted
+/// from the top (all rows when row1 = 0); -1 when the sizes differ.
+long differing_pixels(const fs::path& a, const fs::path& b, int row0 = 0, int row1 = 0) {
+  vtkNew<vtkPNGReader> ra, rb;
+  ra->SetFileName(a.string().c_str());
+  rb->SetFileName(b.string().c_str());
+  ra->Update();
+  rb->Update();
+  int da[3], db[3];
+  ra->GetOutput()->GetDimensions(da);
+  rb->GetOutput()->GetDimensions(db);
+  if (da[0] != db[0] || da[1] != db[1]) return -1;
+  auto* pa = vtkUnsignedCharArray::SafeDownCast(ra->GetOutput()->GetPointData()->GetScalars());
+  auto* pb = vtkUnsignedCharArray::SafeDownCast(rb->GetOutput()->GetPointData()->GetScalars());
+  const int nc = pa->GetNumberOfComponents();
+  if (row1 <= 0) row1 = da[1];
+  long n = 0;
+  for (int top = row0; top < row1; ++top) {
+    const int row = da[1] - 1 - top;  // VTK images start at the bottom row
+    for (int x = 0; x < da[0]; ++x) {
+      const vtkIdType p = static_cast<vtkIdType>(row) * da[0] + x;
+      bool same = true;
+      for (int ch = 0; ch < std::min(nc, 3); ++ch) same = same && pa->GetValue(p * nc + ch) == pb->GetValue(p * nc + ch);
+      n += !same;
+    }
+  }
+  return n;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 struct ImageCheck {
@@ -179,13 +214,50 @@ TEST_F(Render, PressureWithParcelsAndVorticityPngsAreNotBlank) {
   expect_rendered(dir_ / "figures" / "vorticity_000001.png");
   EXPECT_FALSE(fs::exists(dir_ / "figures" / "pressure_000000.png"));  // last time only
   EXPECT_TRUE(fs::exists(dir_ / "saved.pvsm"));
+  // The state a run folder gets names its data without the folder, so it opens anywhere.
+  const std::string state = read_text(dir_ / "pressure_parcels.pvsm");
+  EXPECT_NE(state.find("value=\"gas.pvd\""), std::string::npos);
+  EXPECT_EQ(state.find(dir_.string()), std::string::npos) << "no absolute path of this run in the state";
 }
 
-TEST_F(Render, ShippedStateRendersTheRunsData) {
+TEST_F(Render, ShippedStateHasRelativePathsALiveTimeLabelAndADataDrivenRange) {
   const std::string state = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/pressure_parcels.pvsm";
-  ASSERT_TRUE(fs::exists(state));
-  render("--state " + state);
-  expect_rendered(dir_ / "figures" / "state_000001.png");
+  const std::string xml = read_text(state);
+  EXPECT_NE(xml.find("<Element index=\"0\" value=\"gas.pvd\"/>"), std::string::npos);
+  EXPECT_NE(xml.find("<Element index=\"0\" value=\"parcels.pvd\"/>"), std::string::npos);
+  EXPECT_FALSE(std::regex_search(xml, std::regex("value=\"/[A-Za-z]"))) << "no absolute path";
+  EXPECT_NE(xml.find("type=\"PythonAnnotation\""), std::string::npos) << "a label that follows the time";
+  EXPECT_EQ(xml.find("t = 0.0500 ms"), std::string::npos) << "no fixed time text";
+  // AutomaticRescaleRangeMode 3: "Clamp and update every timestep".
+  EXPECT_NE(xml.find("AutomaticRescaleRangeMode\" number_of_elements=\"1\">\n        <Element index=\"0\" value=\"3\"/>"),
+            std::string::npos);
+  // Rendered with another run's data at each of its times: the images change with time,
+  // the label too (its rows at the top of the image).
+  render("--state " + state + " --all");
+  const fs::path first = dir_ / "figures" / "state_000000.png", last = dir_ / "figures" / "state_000001.png";
+  expect_rendered(first);
+  expect_rendered(last);
+  const long changed = differing_pixels(first, last), label = differing_pixels(first, last, 0, 30);
+  std::cout << "shipped state: " << changed << " pixels differ between t = 0 and t = 5e-5 s, " << label
+            << " of them in the label rows\n";
+  EXPECT_GT(changed, 20000);
+  EXPECT_GT(label, 20);
+}
+
+
+TEST_F(Render, RunSceneScriptTakesPathsRelativeToTheCallersFolder) {
+  // scene and output folder given relative to where the user stands, not to the repository.
+  const fs::path cwd = dir_ / "user";
+  fs::create_directories(cwd);
+  fs::copy_file(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml", cwd / "tube.toml");
+  const std::string command = "cd " + cwd.string() + " && bash " + std::string(DUSTLIFT_SOURCE_DIR) +
+                              "/scripts/run-scene.sh tube.toml out --set grid.x.cells=100 --threads 1 > script.log 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(status, 0) << read_text(cwd / "script.log");
+  EXPECT_TRUE(fs::exists(cwd / "out" / "gas.pvd"));
+  EXPECT_TRUE(fs::exists(cwd / "out" / "figures" / "shock_position.png"));
+  expect_rendered(cwd / "out" / "figures" / "pressure_000004.png");
+  EXPECT_TRUE(fs::exists(cwd / "out" / "pressure_parcels.pvsm"));
 }
 
 }  // namespace
