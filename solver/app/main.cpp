@@ -17,6 +17,7 @@
 
 #include "insitu/checkpoint.hpp"
 #include "insitu/lifting_delay.hpp"
+#include "solver/app/info.hpp"
 #include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/app/sweep.hpp"
@@ -79,29 +80,6 @@ const std::string& text_of(const Snapshot& s, const std::string& name, const std
   const auto it = s.text.find(name);
   if (it == s.text.end()) throw CheckpointError(path + ": missing text '" + name + "'");
   return it->second;
-}
-
-void print_info(const Scene& scene, const Simulation& sim) {
-  const Grid2D& g = sim.grid();
-  fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
-  fmt::print("effects on:\n");
-  for (const auto& e : sim.enabled_effects()) fmt::print("  - {}\n", e);
-  fmt::print("grid: {} x {} cells = {} cells; x in [{:g}, {:g}] m, y in [{:g}, {:g}] m; "
-             "min dx = {:g} m, min dy = {:g} m\n",
-             g.nx(), g.ny(), g.interior_cells(), g.x().start(), g.x().end(), g.y().start(),
-             g.y().end(), g.x().min_width(), g.y().min_width());
-  if (const ParcelSystem* p = sim.parcels()) {
-    fmt::print("parcels: {}; DEM sub-step (eq. 18, nu_DEM {:g}) = {:.4g} s, ~{} per CFD step\n", p->size(),
-               scene.particles.courant, p->stable_time_step(), p->substeps_for(sim.gas().stable_dt()));
-    fmt::print("{}\n", describe_layer(scene.particles));
-    if (layer_settles(scene.particles.layer)) fmt::print("{}\n", describe_bed(*p, scene.particles.layer));
-  } else {
-    fmt::print("parcels: 0 (gas only)\n");
-  }
-  const double dt0 = sim.gas().stable_dt();
-  fmt::print("time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f}\n",
-             scene.run.end_time, scene.gas.scheme.cfl, dt0, std::ceil(scene.run.end_time / dt0));
-  fmt::print("\n{}", scene.resolved_toml);
 }
 
 /// `run`: a scene (or a checkpoint's scene) into its output folder.
