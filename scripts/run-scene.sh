@@ -11,14 +11,14 @@ fi
 scene=$1; out=$2; shift 2
 "$root/build/release/dustlift" run "$scene" --out "$out" "$@"
 /usr/bin/python3 "$root/analysis/make_figures.py" "$out"
-# xvfb-run -a can pick a display another render is starting on ("bad X server connection"),
-# and an X server started under load occasionally dies at start: try other displays.
-for attempt in 1 2 3; do
-  if xvfb-run -a -n $((100 + RANDOM % 800)) pvbatch "$root/pvstates/render.py" "$out"; then
+# A private X server per render (scripts/with-xvfb.sh; xvfb-run -a races for displays);
+# one more attempt if the render still fails.
+for attempt in 1 2; do
+  if bash "$root/scripts/with-xvfb.sh" pvbatch "$root/pvstates/render.py" "$out"; then
     echo "output in $out"
     exit 0
   fi
-  echo "run-scene.sh: render attempt $attempt failed; retrying on another display" >&2
+  echo "run-scene.sh: render attempt $attempt failed" >&2
 done
 echo "run-scene.sh: the renders failed (the run and its figures are in $out)" >&2
 exit 1

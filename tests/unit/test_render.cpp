@@ -1,5 +1,5 @@
 // Offscreen rendering end to end: synthetic gas + parcel series written by the writers,
-// rendered by pvstates/render.py under `xvfb-run -a pvbatch`; the PNGs must exist, have a
+// rendered by pvstates/render.py under a private Xvfb (scripts/with-xvfb.sh); the PNGs must exist, have a
 // plausible size and not be a uniform image (pvbatch exits 0 even when loading failed).
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -163,8 +163,8 @@ void expect_rendered(const fs::path& png) {
 class Render : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!on_path("xvfb-run") || !on_path("pvbatch"))
-      FAIL() << "xvfb-run and pvbatch are needed for offscreen rendering; install them with "
+    if (!on_path("Xvfb") || !on_path("pvbatch"))
+      FAIL() << "Xvfb and pvbatch are needed for offscreen rendering; install them with "
                 "scripts/install-deps.sh (packages xvfb, xauth, paraview, python3-paraview)";
     // Each test its own folder: the shipped state must find data away from where it was saved.
     dir_ = fs::temp_directory_path() /
@@ -177,26 +177,19 @@ class Render : public ::testing::Test {
   void TearDown() override {
     if (!HasFailure()) fs::remove_all(dir_);  // keep the PNGs and render.log of a failure
   }
-  /// Runs render.py with extra arguments; returns wall seconds. `xvfb-run -a` picks a free
-  /// display by probing lock files, which races when two renders start at once (ctest -j2,
-  /// several users): start the probe at a per-process display number and retry once if
-  /// the X server connection failed.
+  /// Runs render.py with extra arguments under a private X server (scripts/with-xvfb.sh:
+  /// Xvfb picks its own free display, so concurrent renders never race for one); returns
+  /// wall seconds.
   double render(const std::string& extra) {
     const std::string script = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/render.py";
     const fs::path log = dir_ / "render.log";
     const auto start = std::chrono::steady_clock::now();
-    int status = 0;
-    std::string command;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-      const int display = 100 + static_cast<int>((::getpid() * 7 + attempt * 131) % 800);
-      command = "xvfb-run -a -n " + std::to_string(display) + " pvbatch " + script + " " +
-                dir_.string() + " " + extra + " > " + log.string() + " 2>&1";
-      status = std::system(command.c_str());
-      if (read_log(log).find("bad X server connection") == std::string::npos) break;
-    }
+    const std::string command = "bash " + std::string(DUSTLIFT_SOURCE_DIR) + "/scripts/with-xvfb.sh pvbatch " + script +
+                                " " + dir_.string() + " " + extra + " > " + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_EQ(status, 0) << command << "\nsee " << log;
+    EXPECT_EQ(status, 0) << command << "\n" << read_log(log);
     return seconds;
   }
   static std::string read_log(const fs::path& path) {
