@@ -20,6 +20,7 @@ detects, but callers should check the PNGs themselves.
 """
 import argparse
 import os
+import re
 import sys
 import time
 
@@ -108,15 +109,25 @@ def time_label(view, source):
 
 
 def save_relative_state(path, outdir):
-    """Saves the session as a .pvsm whose readers name their files relative to the run folder
-    (gas.pvd, parcels.pvd): it then loads for any run folder ("Search files under specified
-    directory"), not only the one it was saved from."""
+    """Saves the session as a .pvsm that loads for any run folder ("Search files under
+    specified directory"), not only the one it was saved from: the readers name their files
+    relative to the run folder (gas.pvd, parcels.pvd), and the animation scene keeps no
+    start, end or current time, so it takes them from the data it is loaded with (a saved
+    end time would stop another run's animation there)."""
     pv.SaveState(path)
     with open(path) as f:
         text = f.read()
     prefix = os.path.join(os.path.abspath(outdir), "")
+    text = text.replace('value="' + prefix, 'value="')
+    scene = re.search(r'<Proxy group="animation" type="AnimationScene" id="(\d+)".*?</Proxy>', text, re.S)
+    if scene:
+        block = scene.group(0)
+        for name in ("StartTime", "EndTime", "AnimationTime"):
+            block = re.sub(r'\n\s*<Property name="%s" id="%s\.%s".*?</Property>' % (name, scene.group(1), name), "",
+                           block, flags=re.S)
+        text = text.replace(scene.group(0), block)
     with open(path, "w") as f:
-        f.write(text.replace('value="' + prefix, 'value="'))
+        f.write(text)
 
 
 def cell_range(source, name, t):
@@ -210,6 +221,10 @@ def render_state(state, outdir, figures, times_wanted):
         b = gas[0].GetDataInformation().GetBounds()
         frame(view, b[0], b[1], b[2], b[3])
     scene = pv.GetAnimationScene()
+    # The animation takes its range from the data (a state with a locked end time would stop
+    # at the end of the run it was saved from).
+    print("state: %d times from %g to %g s; animation from %g to %g s" % (len(times), times[0], times[-1],
+                                                                          scene.StartTime, scene.EndTime))
     for index, t in times_wanted(times):
         scene.AnimationTime = t
         view.ViewTime = t

@@ -227,6 +227,10 @@ TEST_F(Render, ShippedStateHasRelativePathsALiveTimeLabelAndADataDrivenRange) {
   // Rendered with another run's data at each of its times: the images change with time,
   // the label too (its rows at the top of the image).
   render("--state " + state + " --all");
+  // Saved from a run that ended at 2e-5 s, its animation runs to this run's last time.
+  EXPECT_NE(read_log(dir_ / "render.log").find("state: 2 times from 0 to 5e-05 s; animation from 0 to 5e-05 s"),
+            std::string::npos)
+      << read_log(dir_ / "render.log");
   const fs::path first = dir_ / "figures" / "state_000000.png", last = dir_ / "figures" / "state_000001.png";
   expect_rendered(first);
   expect_rendered(last);
