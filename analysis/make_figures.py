@@ -3,7 +3,7 @@
 
 Usage: /usr/bin/python3 analysis/make_figures.py OUTDIR [--max-curves N]
 
-Reads OUTDIR/series/*.csv (header "name_unit,...", first column the abscissa) and writes
+Reads OUTDIR/series/*.csv (header "name_unit,...", e.g. u_m_per_s; first column the abscissa) and writes
 into OUTDIR/figures/ whatever the present series allow:
   shock_position.png           x_s(t) with a least-squares line through the t > 0 points;
                                its slope (the shock speed) is in the legend and printed
@@ -84,11 +84,18 @@ def surface_height(series, out, max_curves):
     return save(fig, out, "surface_height.png")
 
 
+def station_label(name):
+    """'height_at_x0p05_m' -> 'x = 0.05 m' (the station's x is written into the column name
+    with '.' as 'p' and '-' as 'm', so that the name is an identifier)."""
+    x = name[len("height_at_x"):-len("_m")]
+    return "x = %s m" % ("-" + x[1:] if x.startswith("m") else x).replace("p", ".")
+
+
 def surface_stations(series, out):
     names = list(series)
     fig, ax = plt.subplots(figsize=(6, 4))
     for name in names[1:]:
-        ax.plot(series[names[0]] * 1e3, series[name] * 1e3, label=name.replace("height_at_x", "x = ").replace("_m", " m"))
+        ax.plot(series[names[0]] * 1e3, series[name] * 1e3, label=station_label(name))
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("dust surface height [mm]")
     ax.legend(fontsize=8)
@@ -119,8 +126,8 @@ def forces(series, out, band):
 
 
 def magnus_inputs(series, out, band):
-    cols = [("relative_rotation_rad/s", "relative rotation"), ("particle_rotation_rad/s", "particle rotation"),
-            ("gas_rotation_rad/s", "gas rotation")]
+    cols = [("relative_rotation_rad_per_s", "relative rotation"), ("particle_rotation_rad_per_s", "particle rotation"),
+            ("gas_rotation_rad_per_s", "gas rotation")]
     present = [(c, n) for c, n in cols if c in series and np.isfinite(series[c]).any()]
     if not present:
         return None

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace dustlift {
 
@@ -172,9 +173,74 @@ SeriesTable BandForceAccumulator::table() const {
   return t;
 }
 
-BandForceSeries::BandForceSeries(const std::string& output_dir, const std::vector<Band>& bands,
-                                 BandAverageOptions options)
-    : sink_(output_dir) {
+namespace {
+std::vector<std::int64_t> as_int64(const std::vector<std::size_t>& v, std::size_t n) {
+  return {v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n)};
+}
+std::vector<double> first(const std::vector<double>& v, std::size_t n) {
+  return {v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n)};
+}
+/// Bins up to the last one with a sample: those after it are all zero (a long band duration
+/// holds many bins no sample reached yet; the checkpoint stays small).
+std::size_t used_bins(const std::vector<std::size_t>& count) {
+  std::size_t n = count.size();
+  while (n > 0 && count[n - 1] == 0) --n;
+  return n;
+}
+
+/// Copies the stored bins into `into` (as many as both have); counts must not be negative.
+template <class Stored, class Into>
+void restore_bins(const std::vector<Stored>& stored, std::vector<Into>& into, const std::string& name) {
+  std::fill(into.begin(), into.end(), Into{});
+  for (std::size_t b = 0; b < std::min(stored.size(), into.size()); ++b) {
+    if constexpr (std::is_integral_v<Stored>) {
+      if (stored[b] < 0) throw SnapshotError("array '" + name + "' holds a negative count");
+    }
+    into[b] = static_cast<Into>(stored[b]);
+  }
+}
+}  // namespace
+
+void BandForceAccumulator::save_state(Snapshot& s, const std::string& prefix) const {
+  const std::size_t n = used_bins(count_), nw = used_bins(window_count_);
+  s.i64[prefix + "samples"] = as_int64(count_, n);
+  for (std::size_t q = 0; q < kQuantityCount; ++q) {
+    s.f64[prefix + "sum_" + std::to_string(q)] = first(sum_[q], n);
+    s.i64[prefix + "count_" + std::to_string(q)] = as_int64(quantity_count_[q], n);
+  }
+  s.f64[prefix + "window_sum_x"] = first(window_sum_[0], nw);
+  s.f64[prefix + "window_sum_y"] = first(window_sum_[1], nw);
+  s.i64[prefix + "window_samples"] = as_int64(window_count_, nw);
+}
+
+void BandForceAccumulator::restore_state(const Snapshot& s, const std::string& prefix) {
+  const auto& samples = snapshot_array(s.i64, prefix + "samples");
+  const std::size_t bins = samples.size();
+  restore_bins(samples, count_, prefix + "samples");
+  for (std::size_t q = 0; q < kQuantityCount; ++q) {
+    const std::string sum = prefix + "sum_" + std::to_string(q), count = prefix + "count_" + std::to_string(q);
+    if (bins > 0) {
+      restore_bins(snapshot_array(s.f64, sum, bins), sum_[q], sum);
+      restore_bins(snapshot_array(s.i64, count, bins), quantity_count_[q], count);
+    } else {
+      std::fill(sum_[q].begin(), sum_[q].end(), 0.0);
+      std::fill(quantity_count_[q].begin(), quantity_count_[q].end(), 0);
+    }
+  }
+  const auto& windows = snapshot_array(s.i64, prefix + "window_samples");
+  restore_bins(windows, window_count_, prefix + "window_samples");
+  const std::size_t nw = windows.size();
+  for (int c = 0; c < 2; ++c) {
+    const std::string name = prefix + (c == 0 ? "window_sum_x" : "window_sum_y");
+    if (nw > 0) {
+      restore_bins(snapshot_array(s.f64, name, nw), window_sum_[c], name);
+    } else {
+      std::fill(window_sum_[c].begin(), window_sum_[c].end(), 0.0);
+    }
+  }
+}
+
+BandForceSeries::BandForceSeries(const std::vector<Band>& bands, BandAverageOptions options) {
   for (const auto& b : bands) accumulators_.emplace_back(b, options);
 }
 
@@ -182,11 +248,19 @@ void BandForceSeries::add(const BandParcelsView& parcels, double time) {
   for (auto& a : accumulators_) a.add(parcels, time);
 }
 
-void BandForceSeries::write() const {
+void BandForceSeries::write(const SeriesSink& sink) const {
   for (const auto& a : accumulators_) {
     SeriesTable t = a.table();
-    sink_.write(t);
+    sink.write(t);
   }
+}
+
+void BandForceSeries::save_state(Snapshot& s, const std::string& prefix) const {
+  for (const auto& a : accumulators_) a.save_state(s, prefix + a.band().name + "/");
+}
+
+void BandForceSeries::restore_state(const Snapshot& s, const std::string& prefix) {
+  for (auto& a : accumulators_) a.restore_state(s, prefix + a.band().name + "/");
 }
 
 }  // namespace dustlift

@@ -13,6 +13,7 @@
 
 #include "insitu/parcel_arrays.hpp"
 #include "insitu/series_table.hpp"
+#include "solver/sim/snapshot.hpp"
 
 namespace dustlift {
 
@@ -102,6 +103,13 @@ class BandForceAccumulator {
   SeriesTable table() const;
   const Band& band() const { return band_; }
 
+  /// Checkpoint state (the sums and counts of every bin and window) under `prefix`.
+  void save_state(Snapshot& s, const std::string& prefix) const;
+  /// Takes it back. The bins are aligned to tau_min and fixed widths, so a state with fewer
+  /// bins (a run extended to a later end time, whose default duration grew) fills the first
+  /// ones; one with more drops the bins beyond tau_max. SnapshotError when it does not fit.
+  void restore_state(const Snapshot& s, const std::string& prefix);
+
  private:
   Band band_;
   BandAverageOptions options_;
@@ -116,14 +124,15 @@ class BandForceAccumulator {
 /// ParcelSystem observer builds a BandParcelsView and calls add() then write().
 class BandForceSeries {
  public:
-  BandForceSeries(const std::string& output_dir, const std::vector<Band>& bands,
-                  BandAverageOptions options = {});
+  BandForceSeries(const std::vector<Band>& bands, BandAverageOptions options = {});
   void add(const BandParcelsView& parcels, double time);
-  void write() const;
+  void write(const SeriesSink& sink) const;
   const std::vector<BandForceAccumulator>& accumulators() const { return accumulators_; }
+  /// Every band's state, under <prefix><band name>/.
+  void save_state(Snapshot& s, const std::string& prefix) const;
+  void restore_state(const Snapshot& s, const std::string& prefix);
 
  private:
-  SeriesSink sink_;
   std::vector<BandForceAccumulator> accumulators_;
 };
 

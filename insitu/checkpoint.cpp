@@ -22,7 +22,16 @@ namespace {
 
 constexpr const char* kMagic = "DUSTLIFT-CHECKPOINT 1\n";
 constexpr const char* kFormat = "dustlift-checkpoint 1";
-const char* const kGroups[] = {"run", "gas", "parcels", "dem", "coupling", "scene"};
+const char* const kGroups[] = {"run", "gas", "parcels", "dem", "coupling", "scene", "insitu"};
+/// Groups a checkpoint may lack: the parcel groups of a gas-only run, the in-situ group of a
+/// run without outputs that carry state.
+bool optional_group(const std::string& g) {
+  return g == "parcels" || g == "dem" || g == "coupling" || g == "insitu";
+}
+/// Nesting below a top-level group (insitu/<observer>/<series>/<column>) and entries in all:
+/// bounds for a forged file.
+constexpr int kMaxGroupDepth = 4;
+constexpr hsize_t kMaxEntries = 100000;
 
 /// FNV-1a, 64 bit: simple, no table, catches truncation and bit flips (not an attacker).
 std::uint64_t fnv1a64(const char* data, std::size_t n) {
@@ -192,29 +201,49 @@ std::string read_format(hid_t file) {
   return value;
 }
 
+/// Reads every dataset of group `path` into `s`, and its sub-groups down to kMaxGroupDepth.
+void read_group(hid_t file, const std::string& path, int depth, std::size_t file_bytes, hsize_t& entries, Snapshot& s) {
+  Handle group(H5Gopen2(file, path.c_str(), H5P_DEFAULT), H5Gclose, "'" + path + "' is not a group");
+  H5G_info_t info;
+  check(H5Gget_info(group, &info), "cannot list group '" + path + "'");
+  entries += info.nlinks;
+  if (info.nlinks > 1000 || entries > kMaxEntries) throw CheckpointError("group '" + path + "' has too many entries");
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+    if (len <= 0 || len > 256) throw CheckpointError("bad entry name in group '" + path + "'");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), name.size(), H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(len));
+    const std::string full = path + "/" + name;
+    if (H5Oexists_by_name(file, full.c_str(), H5P_DEFAULT) <= 0) throw CheckpointError("'" + full + "' is not an object");
+    bool is_group = false;
+    {
+      Handle object(H5Oopen(file, full.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + full + "'");
+      is_group = H5Iget_type(object) == H5I_GROUP;
+    }
+    if (is_group) {
+      if (depth >= kMaxGroupDepth) throw CheckpointError("group '" + full + "' is nested too deep");
+      read_group(file, full, depth + 1, file_bytes, entries, s);
+    } else {
+      read_dataset(file, full, file_bytes, s);
+    }
+  }
+}
+
 Snapshot read_layout(const std::string& path, std::size_t file_bytes) {
   QuietHdf5 quiet;
   if (H5Fis_hdf5(path.c_str()) <= 0) throw CheckpointError("not an HDF5 file behind the checkpoint header");
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "HDF5 cannot open the file");
   if (read_format(file) != kFormat) throw CheckpointError("HDF5 file without the dustlift checkpoint layout (no format attribute)");
   Snapshot s;
+  hsize_t entries = 0;
   for (const char* g : kGroups) {
     if (H5Lexists(file, g, H5P_DEFAULT) <= 0) {
-      if (std::string(g) == "parcels" || std::string(g) == "dem" || std::string(g) == "coupling") continue;  // gas only
+      if (optional_group(g)) continue;
       throw CheckpointError(std::string("no group '") + g + "'");
     }
-    Handle group(H5Gopen2(file, g, H5P_DEFAULT), H5Gclose, std::string("'") + g + "' is not a group");
-    H5G_info_t info;
-    check(H5Gget_info(group, &info), std::string("cannot list group '") + g + "'");
-    if (info.nlinks > 1000) throw CheckpointError(std::string("group '") + g + "' has too many entries");
-    for (hsize_t k = 0; k < info.nlinks; ++k) {
-      const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
-      if (len <= 0 || len > 256) throw CheckpointError(std::string("bad entry name in group '") + g + "'");
-      std::string name(static_cast<std::size_t>(len) + 1, '\0');
-      H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), name.size(), H5P_DEFAULT);
-      name.resize(static_cast<std::size_t>(len));
-      read_dataset(file, std::string(g) + "/" + name, file_bytes, s);
-    }
+    // Only the in-situ group nests (observer / series / column).
+    read_group(file, g, std::string(g) == "insitu" ? 1 : kMaxGroupDepth, file_bytes, entries, s);
   }
   return s;
 }

@@ -3,6 +3,8 @@
 #include <memory>
 
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
+#include "insitu/series_state.hpp"
 #include "insitu/series_table.hpp"
 #include "solver/core/derivatives.hpp"
 
@@ -41,13 +43,27 @@ class NearLayerObserver final : public Observer {
         table_.append_row(row);
       }
     }
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
-    sink_->write(table_);
+    write(view);
     written_ = true;
     last_time_ = view.time;
   }
 
+  std::string state_key() const override { return "near_layer"; }
+  void save_state(Snapshot& s, const std::string& prefix) const override {
+    save_series_state({&table_}, last_time_, written_, s, prefix);
+  }
+  void restore_state(const Snapshot& s, const std::string& prefix) override {
+    written_ = restore_series_state({&table_}, last_time_, s, prefix);
+  }
+  void on_resume(const StateView& view, const std::string&) override {
+    if (written_) write(view);
+  }
+
  private:
+  void write(const StateView& view) {
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
+    sink_->write(table_);
+  }
   NearLayerOptions options_;
   SeriesTable table_;
   Field2D vorticity_;

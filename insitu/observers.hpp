@@ -60,6 +60,15 @@ using BandParcelsOf = std::function<BandParcelsView(const StateView&)>;
 std::unique_ptr<Observer> make_band_force_observer(BandForceOptions options,
                                                    BandParcelsOf parcels_of);
 
+/// Point probes (OpenFOAM's `probes`): the gas values of the cell holding each probe point,
+/// at t = 0 and then after every step (interval 0) or after the first step at or past each
+/// multiple of `interval`. Series probes: time_s, then <probe>_<field> per probe and field.
+struct ProbeOptions {
+  std::vector<ProbeConfig> probes;
+  double interval = 0.0;  ///< s of simulated time; 0: every step
+};
+std::unique_ptr<Observer> make_probe_observer(ProbeOptions options);
+
 /// Window of the near-layer field series (paper Fig. 13).
 struct NearLayerOptions {
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< m

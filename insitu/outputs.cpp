@@ -9,21 +9,34 @@
 namespace dustlift {
 namespace {
 
+/// A force part's columns, or none when the scene does not compute it (a column of zeros
+/// would read as a computed zero force).
+Vec2Columns force_part(bool computed, const std::vector<double>& fx, const std::vector<double>& fy) {
+  return computed ? Vec2Columns{fx, fy} : Vec2Columns{};
+}
+
 /// Parcel arrays straight from the ParcelSystem (no copy): the writer reads them at outputs.
+/// The force parts of effects that are off are left out; the table's attached columns marked
+/// `written` are added under their names.
 ParcelArraysView parcel_arrays_of(const StateView& v) {
   const ParcelSystem& p = *v.parcels;
+  const CouplingConfig& c = v.scene->coupling;
   ParcelArraysView a;
   a.count = p.size();
   a.position = {p.x, p.y};
+  a.id = p.id;
   a.velocity = {p.vx, p.vy};
   a.angular_velocity = p.omega;
   a.temperature = p.temperature;
   a.diameter = p.diameter;
   a.initial_position = {p.x_initial, p.y_initial};
   a.force_contact = {p.contact_fx, p.contact_fy};
-  a.force_drag = {p.drag_fx, p.drag_fy};
-  a.force_magnus = {p.magnus_fx, p.magnus_fy};
-  a.force_pressure = {p.pressure_fx, p.pressure_fy};
+  a.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
+  a.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
+  a.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
+  for (std::size_t k = 0; k < p.attached_count(); ++k) {
+    if (p.attached_spec(k).written) a.extra.push_back({p.attached_spec(k).name, p.attached(k)});
+  }
   return a;
 }
 
@@ -34,10 +47,11 @@ BandParcelsView band_arrays_of(const StateView& v) {
   b.count = p.size();
   b.initial_position = {p.x_initial, p.y_initial};
   b.y = p.y;
+  const CouplingConfig& c = v.scene->coupling;
   b.force_contact = {p.contact_fx, p.contact_fy};
-  b.force_drag = {p.drag_fx, p.drag_fy};
-  b.force_magnus = {p.magnus_fx, p.magnus_fy};
-  b.force_pressure = {p.pressure_fx, p.pressure_fy};
+  b.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
+  b.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
+  b.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
   b.particle_rotation = p.omega;
   if (v.coupling != nullptr) {
     b.relative_rotation = p.column(v.coupling->relative_rotation_column());
@@ -62,12 +76,18 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
   shock.threshold = out.shock_threshold;
   if (ic.kind == InitialCondition::Kind::Shock) shock.p_ambient = ic.state.p;
   if (ic.kind == InitialCondition::Kind::Riemann) shock.p_ambient = ic.right.p;
-  if (scene.particles.enabled) shock.y_min = scene.particles.layer.y_max;
+  // A layer that fills the channel (a bed across a shock tube) leaves no row above it: then
+  // every row is searched.
+  if (scene.particles.enabled) {
+    const Axis y(build_axis_nodes(scene.grid.y), 0);
+    if (scene.particles.layer.y_max <= y.center(y.cells() - 1)) shock.y_min = scene.particles.layer.y_max;
+  }
   if (ic.axis == 'x') {
     // A Riemann start with the high pressure on the right sends its shock to -x: skip.
     const bool rightward = ic.kind != InitialCondition::Kind::Riemann || ic.left.p > ic.right.p;
     if (rightward) observers.push_back(make_shock_position_observer(shock));
   }
+  if (!out.probes.empty()) observers.push_back(make_probe_observer({out.probes, out.probe_interval}));
   if (!scene.particles.enabled) return observers;
 
   if (out.vtk) observers.push_back(make_vtk_parcel_writer(parcel_arrays_of));

@@ -31,6 +31,8 @@ void ParcelArraysView::check_sizes() const {
   check2("force_drag", force_drag);
   check2("force_magnus", force_magnus);
   check2("force_pressure", force_pressure);
+  check("id", id.size());
+  for (const auto& c : extra) check(c.name.c_str(), c.values.size());
 }
 
 }  // namespace dustlift

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
+#include "insitu/series_state.hpp"
 #include "insitu/shock_position.hpp"
 #include "solver/core/derivatives.hpp"
 #include "insitu/vtk_writers.hpp"
@@ -20,18 +22,36 @@ class VtkParcelWriter final : public Observer {
   }
   void on_output(const StateView& view) override {
     if (!writer_) writer_ = std::make_unique<ParcelSeriesWriter>(view.output_dir);
-    writer_->write(parcels_of_(view), view.time);
+    if (writer_->files().last_time_is(view.time)) return;  // on_finish right after that output
+    writer_->write(parcels_of_(view), view.time, vtk_file_info_of(view));
+  }
+
+  std::string state_key() const override { return "parcels_vtk"; }
+  void save_state(Snapshot& s, const std::string& prefix) const override {
+    if (writer_) {
+      writer_->files().save_state(s, prefix);
+    } else {
+      ParcelSeriesWriter("").files().save_state(s, prefix);  // nothing written yet
+    }
+  }
+  void restore_state(const Snapshot& s, const std::string& prefix) override {
+    restored_ = VtkSeriesFiles::read_state(s, prefix);
+  }
+  void on_resume(const StateView& view, const std::string& previous_output_dir) override {
+    writer_ = std::make_unique<ParcelSeriesWriter>(view.output_dir);
+    writer_->files().resume(std::move(restored_), previous_output_dir);
   }
 
  private:
   ParcelArraysOf parcels_of_;
   std::unique_ptr<ParcelSeriesWriter> writer_;
+  VtkSeriesFiles::State restored_;
 };
 
 class BandForceObserver final : public Observer {
  public:
   BandForceObserver(BandForceOptions options, BandParcelsOf parcels_of)
-      : options_(std::move(options)), parcels_of_(std::move(parcels_of)) {
+      : options_(std::move(options)), parcels_of_(std::move(parcels_of)), series_(options_.bands, options_.averaging) {
     if (!parcels_of_) throw std::invalid_argument("BandForceObserver: no parcel adaptor");
     if (options_.bands.empty()) throw std::invalid_argument("BandForceObserver: no band");
   }
@@ -40,10 +60,32 @@ class BandForceObserver final : public Observer {
   }
   void on_output(const StateView& view) override {
     sample(view);
-    series_->write();
+    write(view);
   }
 
+  std::string state_key() const override { return "bands"; }
+  void save_state(Snapshot& s, const std::string& prefix) const override {
+    s.f64[prefix + "shock_times"] = trajectory_.times();
+    s.f64[prefix + "shock_reaches"] = trajectory_.reaches();
+    save_time(last_time_, sampled_, s, prefix + "last_sample_time");
+    series_.save_state(s, prefix);
+  }
+  void restore_state(const Snapshot& s, const std::string& prefix) override {
+    try {
+      trajectory_.assign(snapshot_array(s.f64, prefix + "shock_times"), snapshot_array(s.f64, prefix + "shock_reaches"));
+    } catch (const std::invalid_argument& e) {
+      throw SnapshotError(prefix + "shock_times/shock_reaches: " + e.what());
+    }
+    sampled_ = restore_time(last_time_, s, prefix + "last_sample_time");
+    series_.restore_state(s, prefix);
+  }
+  void on_resume(const StateView& view, const std::string&) override { write(view); }
+
  private:
+  void write(const StateView& view) {
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
+    series_.write(*sink_);
+  }
   void sample(const StateView& view) {
     if (sampled_ && view.time == last_time_) return;
     if (!view.grid || !view.primitives.p)
@@ -67,16 +109,14 @@ class BandForceObserver final : public Observer {
     band_arrival_times(trajectory_, options_.bands, parcels.initial_position.x, parcels.initial_position.y,
                        arrival_);
     parcels.arrival_time = arrival_;
-    if (!series_)
-      series_ = std::make_unique<BandForceSeries>(view.output_dir, options_.bands,
-                                                  options_.averaging);
-    series_->add(parcels, view.time);
+    series_.add(parcels, view.time);
     sampled_ = true;
     last_time_ = view.time;
   }
   BandForceOptions options_;
   BandParcelsOf parcels_of_;
-  std::unique_ptr<BandForceSeries> series_;
+  BandForceSeries series_;
+  std::unique_ptr<SeriesSink> sink_;
   ShockTrajectory trajectory_;
   std::vector<double> arrival_, pressure_, x_centers_, y_centers_;
   bool sampled_ = false;

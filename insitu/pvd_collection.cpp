@@ -21,6 +21,11 @@ void PvdCollection::add(double time, const std::string& relative_file) {
   write();
 }
 
+void PvdCollection::assign(std::vector<Entry> entries) {
+  entries_ = std::move(entries);
+  write();
+}
+
 void PvdCollection::write() const {
   const std::filesystem::path target(path_);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());

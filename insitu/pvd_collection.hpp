@@ -21,6 +21,8 @@ class PvdCollection {
     std::string file;
   };
   const std::vector<Entry>& entries() const { return entries_; }
+  /// Replaces every entry (a continued run: the entries of its checkpoint) and rewrites the file.
+  void assign(std::vector<Entry> entries);
   const std::string& path() const { return path_; }
 
  private:

@@ -1,9 +1,14 @@
 // HDF5 side of SeriesSink (C API). Layout: /<series>/<column> 1-D float64 datasets,
-// chunked and extendible, each with a string attribute "units"; the group carries
-// "columns" (comma-separated CSV headers, in order) so readers can restore column order.
+// chunked and extendible, each with a string attribute "units"; the first column is the
+// dimension scale of the others (h5py: f["shock_position/x"].dims[0][0] is the time); the
+// group carries "columns" (the column names, comma-separated, in order). Root attributes
+// record the code version, command line, resolved scene and when the file was written.
+// Strings are variable-length UTF-8 (h5py reads them as str).
 #include <hdf5.h>
+#include <hdf5_hl.h>
 
 #include <algorithm>
+#include <ctime>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -33,15 +38,63 @@ void check(herr_t status, const std::string& what) {
   if (status < 0) throw std::runtime_error("HDF5: " + what);
 }
 
+/// A variable-length UTF-8 string type (for attributes of any length).
+hid_t utf8_string_type() {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  if (type >= 0) {
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+  }
+  return type;
+}
+
+std::string read_string_attribute(hid_t object, const char* name);
+
+/// Sets a string attribute, stored variable-length; rewritten only when the value changes (a
+/// rewritten variable-length string takes new space in the file, never given back).
 void write_string_attribute(hid_t object, const char* name, const std::string& value) {
-  if (H5Aexists(object, name) > 0) check(H5Adelete(object, name), "delete attribute");
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
-  check(H5Tset_size(type, value.empty() ? 1 : value.size()), "string size");
-  check(H5Tset_strpad(type, H5T_STR_NULLPAD), "string pad");
+  if (H5Aexists(object, name) > 0) {
+    if (read_string_attribute(object, name) == value) return;
+    check(H5Adelete(object, name), "delete attribute");
+  }
+  Handle type(utf8_string_type(), H5Tclose, "string type");
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
   Handle attr(H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
               std::string("create attribute ") + name);
-  check(H5Awrite(attr, type, value.empty() ? "" : value.c_str()), "write attribute");
+  const char* text = value.c_str();
+  check(H5Awrite(attr, type, &text), "write attribute");
+}
+
+/// A string attribute that changes at every write (the time written): fixed-length and
+/// overwritten in place, so the file does not grow.
+void write_fixed_string_attribute(hid_t object, const char* name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+  check(H5Tset_size(type, value.size()), "string size");
+  check(H5Tset_strpad(type, H5T_STR_NULLPAD), "string pad");
+  if (H5Aexists(object, name) > 0) {
+    bool same_type = false;
+    {
+      Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+      Handle stored(H5Aget_type(attr), H5Tclose, "attribute type");
+      same_type = H5Tequal(stored, type) > 0;
+      if (same_type) check(H5Awrite(attr, type, value.data()), "write attribute");
+    }
+    if (same_type) return;
+    check(H5Adelete(object, name), "delete attribute");
+  }
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+  Handle attr(H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  check(H5Awrite(attr, type, value.data()), "write attribute");
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
 }
 
 /// Opens the file read-write; creates it when missing or not a readable HDF5 file
@@ -88,10 +141,30 @@ void write_column(hid_t group, const std::string& name, const std::string& unit,
 std::string read_string_attribute(hid_t object, const char* name) {
   Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
   Handle type(H5Aget_type(attr), H5Tclose, "attribute type");
+  if (H5Tis_variable_str(type) > 0) {
+    Handle memory(utf8_string_type(), H5Tclose, "string type");
+    char* text = nullptr;
+    check(H5Aread(attr, memory, &text), std::string("read attribute ") + name);
+    std::string value = text != nullptr ? text : "";
+    H5free_memory(text);
+    return value;
+  }
   std::string value(H5Tget_size(type), '\0');
   check(H5Aread(attr, type, value.data()), std::string("read attribute ") + name);
   value.erase(value.find_last_not_of('\0') + 1);
   return value;
+}
+
+/// The comma-separated list of an attribute.
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    parts.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return parts;
 }
 
 }  // namespace
@@ -104,34 +177,19 @@ SeriesTable read_series_h5(const std::string& path, const std::string& name) {
     throw std::runtime_error("no series " + name + " in " + path);
   Handle group(H5Gopen2(file, group_path.c_str(), H5P_DEFAULT), H5Gclose,
                "open group " + name + " in " + path);
-  // Column order comes from "columns" (CSV headers); names and units from the datasets.
-  const std::string headers = read_string_attribute(group, "columns");
+  // Column order from "columns"; units from the datasets.
   std::vector<SeriesColumn> columns;
   std::vector<std::vector<double>> values;
-  std::size_t start = 0;
-  while (start <= headers.size()) {
-    const std::size_t end = std::min(headers.find(',', start), headers.size());
-    const std::string header = headers.substr(start, end - start);
-    start = end + 1;
-    // The dataset whose name + "_" + units equals the header (names may hold '_').
-    bool found = false;
-    for (std::size_t cut = header.rfind('_'); cut != std::string::npos && cut > 0 && !found;
-         cut = header.rfind('_', cut - 1)) {
-      const std::string column = header.substr(0, cut), unit = header.substr(cut + 1);
-      if (H5Lexists(group, column.c_str(), H5P_DEFAULT) <= 0) continue;
-      Handle dataset(H5Dopen2(group, column.c_str(), H5P_DEFAULT), H5Dclose, "open " + column);
-      if (read_string_attribute(dataset, "units") != unit) continue;
-      Handle space(H5Dget_space(dataset), H5Sclose, "dataset space");
-      const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
-      std::vector<double> v(n);
-      if (n)
-        check(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
-              "read " + column);
-      columns.push_back({column, unit});
-      values.push_back(std::move(v));
-      found = true;
-    }
-    if (!found) throw std::runtime_error("series " + name + ": no dataset for column " + header);
+  for (const std::string& column : split_commas(read_string_attribute(group, "columns"))) {
+    if (H5Lexists(group, column.c_str(), H5P_DEFAULT) <= 0)
+      throw std::runtime_error("series " + name + ": no dataset for column " + column);
+    Handle dataset(H5Dopen2(group, column.c_str(), H5P_DEFAULT), H5Dclose, "open " + column);
+    Handle space(H5Dget_space(dataset), H5Sclose, "dataset space");
+    const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+    std::vector<double> v(n);
+    if (n) check(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "read " + column);
+    columns.push_back({column, read_string_attribute(dataset, "units")});
+    values.push_back(std::move(v));
   }
   SeriesTable table(name, columns);
   const std::size_t rows = values.empty() ? 0 : values.front().size();
@@ -143,36 +201,48 @@ SeriesTable read_series_h5(const std::string& path, const std::string& name) {
   return table;
 }
 
-void write_series_h5(const std::string& path, const SeriesTable& table) {
+void write_series_h5(const std::string& path, const SeriesTable& table, const SeriesFileInfo* info) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   Handle file(open_or_create(path), H5Fclose, "open or create " + path);
   const std::string group_name = "/" + table.name();
-  std::string headers;
-  for (std::size_t k = 0; k < table.columns().size(); ++k)
-    headers.append(k ? "," : "").append(table.header(k));
+  std::string names;
+  for (const auto& c : table.columns()) names.append(names.empty() ? "" : ",").append(c.name);
   // A group written with other columns (e.g. other stations) is replaced whole.
   if (H5Lexists(file, group_name.c_str(), H5P_DEFAULT) > 0) {
     bool same_columns = false;
     {
       Handle group(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
-      if (H5Aexists(group, "columns") > 0) {
-        Handle attr(H5Aopen(group, "columns", H5P_DEFAULT), H5Aclose, "open columns");
-        Handle type(H5Aget_type(attr), H5Tclose, "columns type");
-        std::string stored(H5Tget_size(type), '\0');
-        check(H5Aread(attr, type, stored.data()), "read columns");
-        same_columns = stored == headers;
-      }
+      same_columns = H5Aexists(group, "columns") > 0 && read_string_attribute(group, "columns") == names;
     }
     if (!same_columns) check(H5Ldelete(file, group_name.c_str(), H5P_DEFAULT), "delete group");
   }
-  if (H5Lexists(file, group_name.c_str(), H5P_DEFAULT) <= 0) {
-    Handle created(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                   H5Gclose, "create group " + group_name);
-    write_string_attribute(created, "columns", headers);
+  const bool created = H5Lexists(file, group_name.c_str(), H5P_DEFAULT) <= 0;
+  if (created) {
+    Handle group(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "create group " + group_name);
+    write_string_attribute(group, "columns", names);
   }
   Handle group(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
   for (std::size_t k = 0; k < table.columns().size(); ++k)
     write_column(group, table.columns()[k].name, table.columns()[k].unit, table.column(k));
+  if (created && table.columns().size() > 1) {
+    // The abscissa as the dimension scale of every other column.
+    const std::string abscissa = table.columns().front().name;
+    Handle scale(H5Dopen2(group, abscissa.c_str(), H5P_DEFAULT), H5Dclose, "open " + abscissa);
+    check(H5DSset_scale(scale, abscissa.c_str()), "dimension scale " + abscissa);
+    for (std::size_t k = 1; k < table.columns().size(); ++k) {
+      const std::string& column = table.columns()[k].name;
+      Handle dataset(H5Dopen2(group, column.c_str(), H5P_DEFAULT), H5Dclose, "open " + column);
+      check(H5DSattach_scale(dataset, scale, 0), "attach the scale to " + column);
+    }
+  }
+  if (info != nullptr) {
+    write_string_attribute(file, "format", "dustlift-series 2");
+    write_string_attribute(file, "code_version", info->code_version);
+    write_string_attribute(file, "command_line", info->command_line);
+    write_string_attribute(file, "scene", info->scene);
+    write_fixed_string_attribute(file, "written_at", utc_now());
+  }
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
 }
 

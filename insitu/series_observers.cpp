@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
+#include "insitu/series_state.hpp"
 #include "insitu/series_table.hpp"
 #include "insitu/shock_position.hpp"
 #include "insitu/surface_height.hpp"
@@ -39,7 +41,6 @@ class SurfaceHeightObserver final : public Observer {
   void on_output(const StateView& view) override {
     require_grid(view, view.primitives.alpha_g, "SurfaceHeightObserver");
     if (written_ && view.time == last_time_) return;  // on_finish right after an output
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
     const Grid2D& grid = *view.grid;
     if (view.alpha_p != nullptr) {
       interior(grid, *view.alpha_p, alpha_p_, [](double ap) { return ap; });
@@ -55,16 +56,31 @@ class SurfaceHeightObserver final : public Observer {
     std::vector<double> row{view.time};
     for (double x : options_.stations_x) row.push_back(height_at_station(xc, heights, x));
     stations_.append_row(row);
-    sink_->write(profile_);
-    if (!options_.stations_x.empty()) sink_->write(stations_);
+    write(view);
     written_ = true;
     last_time_ = view.time;
   }
 
+  std::string state_key() const override { return "surface_height"; }
+  void save_state(Snapshot& s, const std::string& prefix) const override {
+    save_series_state({&profile_, &stations_}, last_time_, written_, s, prefix);
+  }
+  void restore_state(const Snapshot& s, const std::string& prefix) override {
+    written_ = restore_series_state({&profile_, &stations_}, last_time_, s, prefix);
+  }
+  void on_resume(const StateView& view, const std::string&) override {
+    if (written_) write(view);
+  }
+
  private:
+  void write(const StateView& view) {
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
+    sink_->write(profile_);
+    if (!options_.stations_x.empty()) sink_->write(stations_);
+  }
   static std::vector<SeriesColumn> station_columns(const std::vector<double>& xs) {
     std::vector<SeriesColumn> c{{"time", "s"}};
-    for (double x : xs) c.push_back({fmt::format("height_at_x{:.6g}", x), "m"});
+    for (double x : xs) c.push_back({"height_at_x" + number_in_identifier(x), "m"});
     return c;
   }
   SurfaceHeightOptions options_;
@@ -85,11 +101,25 @@ class ShockPositionObserver final : public Observer {
   }
   void on_output(const StateView& view) override {
     sample(view);
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(view.output_dir);
-    sink_->write(table_);
+    write(view);
+  }
+
+  std::string state_key() const override { return "shock_position"; }
+  void save_state(Snapshot& s, const std::string& prefix) const override {
+    save_series_state({&table_}, last_time_, sampled_, s, prefix);
+  }
+  void restore_state(const Snapshot& s, const std::string& prefix) override {
+    sampled_ = restore_series_state({&table_}, last_time_, s, prefix);
+  }
+  void on_resume(const StateView& view, const std::string&) override {
+    if (sampled_) write(view);
   }
 
  private:
+  void write(const StateView& view) {
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
+    sink_->write(table_);
+  }
   void sample(const StateView& view) {
     require_grid(view, view.primitives.p, "ShockPositionObserver");
     if (sampled_ && view.time == last_time_) return;

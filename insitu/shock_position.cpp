@@ -17,7 +17,9 @@ double shock_position_on_row(std::span<const double> x_centers, std::span<const 
   const double level = ambient * (1.0 + threshold);
   for (std::size_t i = n; i-- > 0;) {
     if (!(p[i] > level)) continue;
-    if (i + 1 == n) return x_centers[i];
+    // Raised up to the last cell: no undisturbed gas ahead, the shock has left the domain
+    // (or not yet formed inside it); a position here would freeze at the last centre.
+    if (i + 1 == n) return nan;
     const double s = (p[i] - level) / (p[i] - p[i + 1]);
     return x_centers[i] + s * (x_centers[i + 1] - x_centers[i]);
   }

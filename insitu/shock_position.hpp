@@ -7,7 +7,8 @@
 namespace dustlift {
 
 /// On one row: x_centers (n) and p (n). `p_ambient` <= 0 takes the row's last
-/// (downstream) value. NaN when no cell exceeds the level.
+/// (downstream) value. NaN when no cell exceeds the level, or when the last cell does (the
+/// shock has left the domain: no undisturbed gas ahead of it).
 double shock_position_on_row(std::span<const double> x_centers, std::span<const double> p,
                              double p_ambient, double threshold);
 

@@ -5,7 +5,10 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -16,7 +19,9 @@
 #include <vtkXMLRectilinearGridWriter.h>
 #include <vtkXMLWriter.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 namespace dustlift {
@@ -56,6 +61,18 @@ void configure_binary_zlib(vtkXMLWriter* writer, const std::string& path) {
   writer->SetCompressionLevel(1);
 }
 
+void add_field_data(vtkDataObject* data, const VtkFileInfo& info) {
+  vtkFieldData* fd = data->GetFieldData();
+  const double time[1] = {info.time};
+  fd->AddArray(scalar_array("TimeValue", time));
+  for (const auto& [name, text] : {std::pair{"code_version", &info.code_version}, std::pair{"command_line", &info.command_line}}) {
+    vtkNew<vtkStringArray> a;
+    a->SetName(name);
+    a->InsertNextValue(*text);
+    fd->AddArray(a);
+  }
+}
+
 void prepare_folder(const std::string& path) {
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
@@ -63,7 +80,7 @@ void prepare_folder(const std::string& path) {
 
 }  // namespace
 
-void write_gas_vtr(const GasCellArrays& gas, const std::string& path) {
+void write_gas_vtr(const GasCellArrays& gas, const std::string& path, const VtkFileInfo& info) {
   gas.check_sizes();
   if (gas.cells() == 0) throw std::invalid_argument("write_gas_vtr: empty grid");
   vtkNew<vtkRectilinearGrid> grid;
@@ -82,6 +99,7 @@ void write_gas_vtr(const GasCellArrays& gas, const std::string& path) {
   cd->AddArray(scalar_array("alpha_p", gas.alpha_p));
   cd->AddArray(scalar_array("vorticity", gas.vorticity));
   cd->SetActiveScalars("pressure");
+  add_field_data(grid, info);
 
   prepare_folder(path);
   vtkNew<vtkXMLRectilinearGridWriter> writer;
@@ -90,7 +108,7 @@ void write_gas_vtr(const GasCellArrays& gas, const std::string& path) {
   if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + path);
 }
 
-void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path) {
+void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path, const VtkFileInfo& info) {
   parcels.check_sizes();
   const auto n = static_cast<vtkIdType>(parcels.count);
   vtkNew<vtkPoints> points;
@@ -126,6 +144,15 @@ void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path)
   add2("force_drag", parcels.force_drag);
   add2("force_magnus", parcels.force_magnus);
   add2("force_pressure", parcels.force_pressure);
+  for (const auto& c : parcels.extra) add1(c.name.c_str(), c.values);
+  if (!parcels.id.empty()) {
+    vtkNew<vtkIntArray> id;
+    id->SetName("id");
+    id->SetNumberOfTuples(n);
+    for (vtkIdType k = 0; k < n; ++k) id->SetValue(k, parcels.id[static_cast<std::size_t>(k)]);
+    pd->AddArray(id);
+  }
+  add_field_data(poly, info);
 
   prepare_folder(path);
   vtkNew<vtkXMLPolyDataWriter> writer;
@@ -146,11 +173,13 @@ std::string VtkSeriesFiles::next_path(double time) {
   const long long index = same_time ? next_index_ - 1 : next_index_;
   pending_ = (std::filesystem::path("vtk") / numbered_file_name(prefix_, index, extension_))
                  .string();
-  return (std::filesystem::path(output_dir_) / pending_).string();
+  return (std::filesystem::path(output_dir_) / pending_).string() + ".tmp";
 }
 
 void VtkSeriesFiles::commit(double time) {
   if (pending_.empty()) throw std::logic_error("VtkSeriesFiles::commit without next_path");
+  const std::filesystem::path target = std::filesystem::path(output_dir_) / pending_;
+  std::filesystem::rename(target.string() + ".tmp", target);
   const bool same_time = has_last_ && time == last_time_;
   pvd_.add(time, pending_);
   if (!same_time) ++next_index_;
@@ -159,11 +188,73 @@ void VtkSeriesFiles::commit(double time) {
   pending_.clear();
 }
 
+void VtkSeriesFiles::save_state(Snapshot& s, const std::string& prefix) const {
+  std::vector<double> times;
+  std::string files;
+  for (const auto& e : pvd_.entries()) {
+    times.push_back(e.time);
+    files += (files.empty() ? "" : "\n") + e.file;
+  }
+  s.f64[prefix + "times"] = times;
+  s.text[prefix + "files"] = files;
+  s.i64[prefix + "next_index"] = {next_index_};
+  s.f64[prefix + "last_time"] = {has_last_ ? last_time_ : std::numeric_limits<double>::quiet_NaN()};
+}
+
+VtkSeriesFiles::State VtkSeriesFiles::read_state(const Snapshot& s, const std::string& prefix) {
+  const auto& times = snapshot_array(s.f64, prefix + "times");
+  const std::string& files = snapshot_text(s, prefix + "files");
+  std::vector<PvdCollection::Entry> entries;
+  std::size_t start = 0;
+  for (double t : times) {
+    if (start > files.size()) throw SnapshotError("text '" + prefix + "files' lists fewer files than times");
+    const std::size_t end = std::min(files.find('\n', start), files.size());
+    entries.push_back({t, files.substr(start, end - start)});
+    start = end + 1;
+  }
+  const long long next = snapshot_array(s.i64, prefix + "next_index", 1)[0];
+  if (next < 0) throw SnapshotError("array '" + prefix + "next_index' is negative");
+  const double last = snapshot_array(s.f64, prefix + "last_time", 1)[0];
+  return State{std::move(entries), next, !std::isnan(last), std::isnan(last) ? 0.0 : last};
+}
+
+void VtkSeriesFiles::resume(State state, const std::string& previous_output_dir) {
+  next_index_ = state.next_index;
+  has_last_ = state.has_last;
+  last_time_ = state.last_time;
+  namespace fs = std::filesystem;
+  const fs::path here = fs::absolute(output_dir_).lexically_normal();
+  std::error_code ec;
+  const bool elsewhere = !previous_output_dir.empty() && !fs::equivalent(previous_output_dir, output_dir_, ec);
+  std::vector<PvdCollection::Entry> entries = std::move(state.entries);
+  if (elsewhere) {
+    const fs::path there = fs::absolute(previous_output_dir).lexically_normal();
+    for (auto& e : entries) {
+      if (fs::path(e.file).is_relative()) e.file = (there / e.file).lexically_normal().lexically_relative(here).string();
+    }
+  }
+  pvd_.assign(std::move(entries));
+  // Files this folder holds beyond the checkpoint (written by the run after it; or .tmp of an
+  // interrupted write) would be listed by nothing: remove them.
+  const fs::path folder = here / "vtk";
+  if (!fs::is_directory(folder, ec)) return;
+  const std::string head = prefix_ + "_";
+  for (const auto& f : fs::directory_iterator(folder, ec)) {
+    const std::string name = f.path().filename().string();
+    if (name.rfind(head, 0) != 0) continue;
+    const std::string digits = name.substr(head.size(), 6);
+    if (digits.size() != 6 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string rest = name.substr(head.size() + 6);
+    if (rest != "." + extension_ && rest != "." + extension_ + ".tmp") continue;
+    if (std::stoll(digits) >= next_index_ || rest != "." + extension_) fs::remove(f.path(), ec);
+  }
+}
+
 ParcelSeriesWriter::ParcelSeriesWriter(const std::string& output_dir)
     : files_(output_dir, "parcels", "vtp") {}
 
-void ParcelSeriesWriter::write(const ParcelArraysView& parcels, double time) {
-  write_parcels_vtp(parcels, files_.next_path(time));
+void ParcelSeriesWriter::write(const ParcelArraysView& parcels, double time, const VtkFileInfo& info) {
+  write_parcels_vtp(parcels, files_.next_path(time), info);
   files_.commit(time);
 }
 

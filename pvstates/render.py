@@ -11,12 +11,16 @@ Writes into OUTDIR/figures/ (or --figures) for the last output time (every time 
                         band 0 <= y - y_min <= H near the dust layer
   state_NNNNNN.png      with --state: the view of a saved ParaView state, its readers
                         pointed at OUTDIR's gas.pvd / parcels.pvd
---save-state FILE saves the pressure + parcels pipeline as a .pvsm for the ParaView GUI.
+Every call also writes OUTDIR/pressure_parcels.pvsm: the pressure + parcels pipeline as a
+ParaView state whose readers name gas.pvd and parcels.pvd without a folder, a live time label
+and a colour range that follows each time's data (open it in the GUI with "Search files
+under specified directory" = OUTDIR). --save-state FILE writes that state elsewhere too.
 pvbatch exits 0 even when data fail to load: this script exits 1 on any problem it
 detects, but callers should check the PNGs themselves.
 """
 import argparse
 import os
+import re
 import sys
 import time
 
@@ -34,7 +38,7 @@ def parse_args(argv):
                    help="m; height of the vorticity view above the floor (default: 3x the "
                         "parcels' top, or a quarter of the domain for gas-only runs)")
     p.add_argument("--state", help="a .pvsm state to render with OUTDIR's data")
-    p.add_argument("--save-state", help="write the pressure + parcels pipeline to this .pvsm")
+    p.add_argument("--save-state", help="also write the pressure + parcels state (relative file names) to this .pvsm")
     return p.parse_args(argv)
 
 
@@ -93,13 +97,37 @@ def style_bar(lut, view, title):
     bar.Visibility = 1
 
 
-def time_label(view, t):
-    text = pv.Text(Text="t = %.4f ms" % (t * 1e3))
+def time_label(view, source):
+    """A label that follows the view's time (a state saved with it stays live)."""
+    text = pv.PythonAnnotation(registrationName="time label", Input=source)
+    text.Expression = "'t = %.4f ms' % (t_value * 1e3)"
     disp = pv.Show(text, view)
     disp.Color = [0, 0, 0]
     disp.FontSize = 14
     disp.WindowLocation = "Upper Left Corner"
     return text
+
+
+def save_relative_state(path, outdir):
+    """Saves the session as a .pvsm that loads for any run folder ("Search files under
+    specified directory"), not only the one it was saved from: the readers name their files
+    relative to the run folder (gas.pvd, parcels.pvd), and the animation scene keeps no
+    start, end or current time, so it takes them from the data it is loaded with (a saved
+    end time would stop another run's animation there)."""
+    pv.SaveState(path)
+    with open(path) as f:
+        text = f.read()
+    prefix = os.path.join(os.path.abspath(outdir), "")
+    text = text.replace('value="' + prefix, 'value="')
+    scene = re.search(r'<Proxy group="animation" type="AnimationScene" id="(\d+)".*?</Proxy>', text, re.S)
+    if scene:
+        block = scene.group(0)
+        for name in ("StartTime", "EndTime", "AnimationTime"):
+            block = re.sub(r'\n\s*<Property name="%s" id="%s\.%s".*?</Property>' % (name, scene.group(1), name), "",
+                           block, flags=re.S)
+        text = text.replace(scene.group(0), block)
+    with open(path, "w") as f:
+        f.write(text)
 
 
 def cell_range(source, name, t):
@@ -119,6 +147,9 @@ def pressure_view(gas, parcels, t, bounds):
     pv.ColorBy(disp, ("CELLS", "pressure"))
     lut = pv.GetColorTransferFunction("pressure")
     lut.ApplyPreset("Jet", True)
+    # The range follows the data of each time shown (also in a saved state, where a fixed
+    # range would saturate another run's data).
+    lut.AutomaticRescaleRangeMode = "Clamp and update every timestep"
     lo, hi = cell_range(gas, "pressure", t)
     lut.RescaleTransferFunction(lo, hi if hi > lo else lo + 1.0)
     style_bar(lut, view, "pressure [Pa]")
@@ -129,7 +160,7 @@ def pressure_view(gas, parcels, t, bounds):
         pdisp.ColorArrayName = ["POINTS", ""]  # solid colour
         pdisp.AmbientColor = [0.0, 0.0, 0.0]
         pdisp.DiffuseColor = [0.0, 0.0, 0.0]
-    time_label(view, t)
+    time_label(view, gas)
     frame(view, xmin, xmax, ymin, ymax)
     return view
 
@@ -163,7 +194,7 @@ def vorticity_view(gas, parcels, t, bounds, layer_height):
         pdisp.ColorArrayName = ["POINTS", ""]  # solid colour
         pdisp.AmbientColor = [0.3, 0.3, 0.3]
         pdisp.DiffuseColor = [0.3, 0.3, 0.3]
-    time_label(view, t)
+    time_label(view, gas)
     frame(view, xmin, xmax, ymin, ymax)
     return view
 
@@ -189,8 +220,20 @@ def render_state(state, outdir, figures, times_wanted):
         gas[0].UpdatePipeline(times[-1])
         b = gas[0].GetDataInformation().GetBounds()
         frame(view, b[0], b[1], b[2], b[3])
+    scene = pv.GetAnimationScene()
+    # The animation takes its range from the data (a state with a locked end time would stop
+    # at the end of the run it was saved from).
+    print("state: %d times from %g to %g s; animation from %g to %g s" % (len(times), times[0], times[-1],
+                                                                          scene.StartTime, scene.EndTime))
     for index, t in times_wanted(times):
+        scene.AnimationTime = t
         view.ViewTime = t
+        # The GUI rescales "update every timestep" colour maps on a time change; pvbatch does not.
+        for src in sources.values():
+            disp = pv.GetDisplayProperties(src, view)
+            lut = getattr(disp, "LookupTable", None)
+            if lut is not None and "every timestep" in str(getattr(lut, "AutomaticRescaleRangeMode", "")):
+                disp.RescaleTransferFunctionToDataRange(False, True)
         save(view, os.path.join(figures, "state_%06d.png" % index))
 
 
@@ -226,10 +269,11 @@ def main(argv):
     for index, t in times_wanted(times):
         view = pressure_view(gas, parcels, t, bounds)
         save(view, os.path.join(figures, "pressure_%06d.png" % index))
-        if args.save_state and index == len(times) - 1:
+        if index == len(times) - 1:
             pv.SetActiveView(view)
-            pv.SaveState(os.path.abspath(args.save_state))
-            print("wrote", args.save_state)
+            for state in [os.path.join(outdir, "pressure_parcels.pvsm")] + ([args.save_state] if args.save_state else []):
+                save_relative_state(os.path.abspath(state), outdir)
+                print("wrote", state)
         pv.Delete(view)
         view = vorticity_view(gas, parcels, t, bounds, args.layer_height)
         save(view, os.path.join(figures, "vorticity_%06d.png" % index))

@@ -1,10 +1,12 @@
 // dustlift command line: `run` a scene into an output folder, `sweep` combinations of scene
 // overrides (docs/output.md, "Sweeps"), or print a scene's `info`.
 // Exit codes: 0 success, 2 bad input (scene, options, output folder, checkpoint),
-// 3 numerical failure. `run --restart CHECKPOINT` continues a run (docs/reliability.md).
+// 3 numerical failure, 4 interrupted (SIGINT/SIGTERM; checkpoint written).
+// `run --restart CHECKPOINT` continues a run in its folder (docs/reliability.md).
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,30 +17,51 @@
 
 #include "insitu/checkpoint.hpp"
 #include "insitu/lifting_delay.hpp"
+#include "solver/app/info.hpp"
+#include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/app/sweep.hpp"
+#include "solver/app/version.hpp"
 #include "solver/core/errors.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"
+#include "solver/sim/time_targets.hpp"
 
 namespace fs = std::filesystem;
 using namespace dustlift;
 
 namespace {
 
-/// --set keys a restart may change: when to stop and what to write. Everything else would
-/// change the physics of a run that is half done (and make the checkpoint's state invalid).
+/// --set keys a restart may change: when to stop, how often to write and checkpoint.
+/// Anything else would change the physics of a run that is half done (and make the
+/// checkpoint's state invalid) or what its series hold (a continued series would mix two
+/// definitions).
 void check_restart_overrides(const std::vector<std::string>& overrides) {
+  static const char* const allowed[] = {"run.end_time", "run.max_steps", "run.progress_interval", "output.interval",
+                                        "output.checkpoint_interval", "output.checkpoint_wall_interval"};
   for (const auto& o : overrides) {
     const std::string key = o.substr(0, o.find('='));
-    const bool allowed = key == "run.end_time" || key == "run.max_steps" || key == "run.progress_interval" ||
-                         key.rfind("output.", 0) == 0;
-    if (!allowed) {
-      throw SceneError("--set '" + o + "': a restart may only change run.end_time, run.max_steps, " +
-                       "run.progress_interval and output.* keys");
+    if (std::find(std::begin(allowed), std::end(allowed), key) == std::end(allowed)) {
+      throw SceneError("--set '" + o + "': a restart continues the same run and may only change run.end_time, " +
+                       "run.max_steps, run.progress_interval, output.interval, output.checkpoint_interval and " +
+                       "output.checkpoint_wall_interval");
     }
   }
+}
+
+/// The command line as a shell would take it back (arguments with special characters quoted).
+std::string command_line_of(int argc, char** argv) {
+  std::string line;
+  for (int k = 0; k < argc; ++k) {
+    const std::string a = argv[k];
+    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789_./=:,+-@%") == std::string::npos;
+    std::string quoted = "'";
+    for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += (k ? " " : "") + (plain ? a : quoted + "'");
+  }
+  return line;
 }
 
 /// Splits the newline-joined overrides a checkpoint stores.
@@ -59,32 +82,9 @@ const std::string& text_of(const Snapshot& s, const std::string& name, const std
   return it->second;
 }
 
-void print_info(const Scene& scene, const Simulation& sim) {
-  const Grid2D& g = sim.grid();
-  fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
-  fmt::print("effects on:\n");
-  for (const auto& e : sim.enabled_effects()) fmt::print("  - {}\n", e);
-  fmt::print("grid: {} x {} cells = {} cells; x in [{:g}, {:g}] m, y in [{:g}, {:g}] m; "
-             "min dx = {:g} m, min dy = {:g} m\n",
-             g.nx(), g.ny(), g.interior_cells(), g.x().start(), g.x().end(), g.y().start(),
-             g.y().end(), g.x().min_width(), g.y().min_width());
-  if (const ParcelSystem* p = sim.parcels()) {
-    fmt::print("parcels: {}; DEM sub-step (eq. 18, nu_DEM {:g}) = {:.4g} s, ~{} per CFD step\n", p->size(),
-               scene.particles.courant, p->stable_time_step(), p->substeps_for(sim.gas().stable_dt()));
-    fmt::print("{}\n", describe_layer(scene.particles));
-    if (layer_settles(scene.particles.layer)) fmt::print("{}\n", describe_bed(*p, scene.particles.layer));
-  } else {
-    fmt::print("parcels: 0 (gas only)\n");
-  }
-  const double dt0 = sim.gas().stable_dt();
-  fmt::print("time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f}\n",
-             scene.run.end_time, scene.gas.scheme.cfl, dt0, std::ceil(scene.run.end_time / dt0));
-  fmt::print("\n{}", scene.resolved_toml);
-}
-
 /// `run`: a scene (or a checkpoint's scene) into its output folder.
 int run_command(std::string scene_path, const std::string& restart_path, std::string out_dir,
-                const std::vector<std::string>& overrides) {
+                const std::vector<std::string>& overrides, bool overwrite, const std::string& command_line) {
   if (scene_path.empty() == restart_path.empty()) {
     throw SceneError("run: give either a scene file or --restart CHECKPOINT (one of them)");
   }
@@ -98,7 +98,7 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
     scene = parse_scene(text_of(restart, "scene/text", restart_path), text_of(restart, "scene/name", restart_path), all);
     const auto t = restart.f64.find("run/time");
     const double t_checkpoint = t != restart.f64.end() && t->second.size() == 1 ? t->second[0] : 0.0;
-    if (!(scene.run.end_time > t_checkpoint)) {
+    if (!(end_target(scene.run.end_time, scene.output.interval) > t_checkpoint)) {
       throw SceneError(fmt::format("key 'run.end_time': {:g} s is not after the checkpoint time {:g} s "
                                    "(extend it with --set run.end_time=...)", scene.run.end_time, t_checkpoint));
     }
@@ -106,34 +106,26 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
   } else {
     scene = load_scene(scene_path, overrides);
   }
-  if (out_dir.empty()) {
-    if (restart_path.empty()) {
-      out_dir = (fs::path("out") / scene.run.name).string();
-    } else {
-      // Inside the checkpoint's folder, named by the step it continues from.
-      const auto s = restart.i64.find("run/step");
-      const long long step = s != restart.i64.end() && s->second.size() == 1 ? s->second[0] : 0;
-      out_dir = (fs::absolute(restart_path).parent_path() / fmt::format("restart_{}", step)).string();
-    }
-  }
-  if (!restart_path.empty()) {
-    std::error_code ec;
-    if (fs::equivalent(out_dir, fs::absolute(restart_path).parent_path(), ec)) {
-      throw SceneError("output folder '" + out_dir + "': a restart writes a new segment; it must not be the " +
-                       "folder of its checkpoint (its outputs would be overwritten)");
-    }
-  }
+  // A restart continues the run in the folder of its checkpoint unless told otherwise.
+  const std::string restart_folder = restart_path.empty() ? "" : fs::absolute(restart_path).parent_path().string();
+  if (out_dir.empty()) out_dir = restart_path.empty() ? (fs::path("out") / scene.run.name).string() : restart_folder;
   RunOptions options;
   options.scene_label = scene_path;
   options.restart = restart_path.empty() ? nullptr : &restart;
-  return run_scene(scene, out_dir, options).exit_code;
+  options.restart_folder = restart_folder;
+  options.overwrite = overwrite;
+  options.command_line = command_line;
+  return run_scene(scene, out_dir, options).exit_code;  // exit 4 printed how to continue
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"dustlift: 2-D compressible CFD-DEM solver for shock-induced dust lifting"};
+  app.set_version_flag("--version", std::string("dustlift ") + code_version());
   app.require_subcommand(1);
+  const std::string command_line = command_line_of(argc, argv);
+  bool overwrite = false;
 
   std::string scene_path, out_dir, restart_path, study_path;
   std::vector<std::string> overrides, varies;
@@ -145,7 +137,9 @@ int main(int argc, char** argv) {
   run->add_option("--restart", restart_path,
                   "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
                   "run.max_steps, run.progress_interval, output.*)");
-  run->add_option("--out,-o", out_dir, "output folder (default: out/<run.name>)");
+  run->add_option("--out,-o", out_dir,
+                  "output folder (default: out/<run.name>; with --restart, the checkpoint's folder)");
+  run->add_flag("--overwrite", overwrite, "empty an existing output folder of an earlier run first");
   // One value per --set/--vary, so a scene named after them is not taken for another value.
   run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)")
       ->allow_extra_args(false);
@@ -160,6 +154,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--out,-o", out_dir, "output folder: one sub-folder per run, summary.csv, summary.h5")
       ->required();
   sweep_cmd->add_option("--set", overrides, "override a scene key in every run (repeatable)")->allow_extra_args(false);
+  sweep_cmd->add_flag("--overwrite", overwrite, "empty an existing sweep folder of an earlier sweep first");
   sweep_cmd->add_option("--stations", sweep.stations, "x (m) of the h(x) columns (default: output.surface_stations)")
       ->delimiter(',')
       ->allow_extra_args(false);
@@ -196,9 +191,9 @@ int main(int argc, char** argv) {
       definition.overrides.insert(definition.overrides.end(), overrides.begin(), overrides.end());
       if (!sweep.stations.empty()) definition.stations = sweep.stations;
       if (sweep_cmd->count("--lift-threshold") > 0) definition.lift_threshold = sweep.lift_threshold;
-      return run_sweep(definition, out_dir, SweepOptions{threads});
+      return run_sweep(definition, out_dir, SweepOptions{threads, overwrite, command_line});
     }
-    return run_command(scene_path, restart_path, out_dir, overrides);
+    return run_command(scene_path, restart_path, out_dir, overrides, overwrite, command_line);
   } catch (const SceneError& e) {
     std::cerr << "dustlift: error: " << e.what() << "\n";
     return kExitBadInput;
@@ -211,5 +206,9 @@ int main(int argc, char** argv) {
   } catch (const NumericalFailure& e) {
     std::cerr << "dustlift: numerical failure: " << e.what() << "\n";
     return kExitNumerical;
+  } catch (const std::bad_alloc&) {
+    // The resource checks of the scene estimate the memory beforehand; this is what they missed.
+    std::cerr << "dustlift: error: out of memory while setting up the run (a smaller grid or fewer parcels)\n";
+    return kExitBadInput;
   }
 }

@@ -8,36 +8,30 @@
 #include <fmt/core.h>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "insitu/checkpoint.hpp"
 #include "insitu/outputs.hpp"
+#include "solver/app/interrupt.hpp"
+#include "solver/app/output_folder.hpp"
+#include "solver/app/version.hpp"
 #include "solver/core/errors.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"
+#include "solver/sim/time_targets.hpp"
 
 namespace fs = std::filesystem;
 
 namespace dustlift {
 namespace {
 
-/// Creates the output folder and proves it is writable before anything else is written.
-void prepare_output_dir(const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw SceneError("output folder '" + dir.string() + "': cannot create: " + ec.message());
-  const fs::path probe = dir / ".dustlift-write-probe";
-  {
-    std::ofstream f(probe);
-    if (!f || !(f << "x")) throw SceneError("output folder '" + dir.string() + "': not writable");
-  }
-  fs::remove(probe, ec);
-}
-
-/// Writes to the terminal (unless quiet) and to the run's log file.
+/// Writes to the terminal (unless quiet) and to the run's log file (appended to when a
+/// restart continues the run in its folder).
 class Log {
  public:
-  Log(const fs::path& p, bool echo) : file_(p), echo_(echo) {}
+  Log(const fs::path& p, bool echo, bool append)
+      : file_(p, append ? std::ios::app : std::ios::trunc), echo_(echo) {}
   void line(const std::string& s) {
     if (echo_) std::cerr << s << "\n";
     if (file_) file_ << s << "\n" << std::flush;
@@ -47,6 +41,23 @@ class Log {
   std::ofstream file_;
   bool echo_;
 };
+
+/// Whether a checkpoint is the end of a run that ended between two output times: its last
+/// step was shortened to land there, which a single run to a later end does not do.
+bool ended_off_the_output_grid(const Snapshot& s, double interval) {
+  const auto end = s.f64.find("run/end_time");
+  const auto t = s.f64.find("run/time");
+  if (end == s.f64.end() || t == s.f64.end() || end->second.size() != 1 || t->second.size() != 1) return false;
+  const double time = t->second[0];
+  if (time != end->second[0]) return false;
+  return !(interval > 0.0) || multiple_time(first_multiple_after(time, interval) - 1, interval) != time;
+}
+
+/// The resolved scene with where it came from: it runs again as it is (`dustlift run`).
+std::string resolved_scene_file(const Scene& scene, const RunOptions& options) {
+  return fmt::format("# Written by dustlift {}\n# Command: {}\n{}", code_version(), options.command_line,
+                     scene.resolved_toml);
+}
 
 }  // namespace
 
@@ -59,22 +70,41 @@ std::string format_duration(double s) {
 }
 
 RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOptions& options) {
+  const bool continuing = options.restart != nullptr && same_folder(out_dir, options.restart_folder);
+  const FolderUse use = continuing ? FolderUse::Continue : options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh;
+  check_output_folder(out_dir, use);
   Simulation sim(scene);  // validates the whole setup before anything is written
+  sim.set_provenance({code_version(), options.command_line});
+  if (options.extra_observers) {
+    for (auto& o : options.extra_observers()) sim.add_observer(std::move(o));
+  }
+  for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
   if (options.restart != nullptr) {
     try {
-      sim.restore(*options.restart);
+      sim.restore(*options.restart, options.restart_folder);
     } catch (const SnapshotError& e) {
       throw CheckpointError(options.scene_label + ": does not fit its scene: " + e.what());
     }
   }
-  prepare_output_dir(out_dir);
+  prepare_output_folder(out_dir, use);
   {
     std::ofstream f(fs::path(out_dir) / "scene.resolved.toml");
-    f << scene.resolved_toml;
+    f << resolved_scene_file(scene, options);
   }
-  Log log(fs::path(out_dir) / "run.log", options.echo_log);
+  Log log(fs::path(out_dir) / "run.log", options.echo_log, continuing);
+  log.line(fmt::format("dustlift {}", code_version()));
+  log.line(fmt::format("command: {}", options.command_line));
   log.line(fmt::format("dustlift run {} -> {} ({} threads)", options.scene_label, out_dir, omp_get_max_threads()));
-  if (options.restart != nullptr) log.line(fmt::format("  restarted at t = {:.6e} s, step {}", sim.time(), sim.step()));
+  if (options.restart != nullptr) {
+    log.line(fmt::format("  restarted at t = {:.6e} s, step {}{}", sim.time(), sim.step(),
+                         continuing ? ", continuing the series in this folder"
+                                    : ", continuing the series of " + options.restart_folder));
+  }
+  if (options.restart != nullptr && ended_off_the_output_grid(*options.restart, scene.output.interval)) {
+    log.line("  note: the checkpoint is the end of a run whose end time was not an output time; its last step "
+             "was shortened to end there, so this continuation differs in the last digits from a single run to "
+             "the new end (end times that are multiples of output.interval continue bit for bit)");
+  }
   const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
   sim.set_checkpoint_writer([&](const Simulation& s) { write_checkpoint(checkpoint_path, s.snapshot()); });
   for (const auto& e : sim.enabled_effects()) log.line("  " + e);
@@ -82,7 +112,6 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     log.line("  " + describe_layer(scene.particles));
     if (layer_settles(scene.particles.layer)) log.line("  " + describe_bed(*p, scene.particles.layer));
   }
-  for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
   sim.set_progress_callback([&](const Progress& p) {
     log.line(fmt::format("t = {:.4e} s ({:5.1f}%)  step {}  dt = {:.3e} s  wall {}  ETA {}", p.time,
                          100.0 * p.time / p.end_time, p.step, p.dt, format_duration(p.wall_seconds),
@@ -90,8 +119,17 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   });
   RunOutcome outcome;
   const auto t0 = std::chrono::steady_clock::now();
+  RunEnd how = RunEnd::Completed;
   try {
-    sim.run(out_dir);
+    std::optional<InterruptHandler> signals;
+    if (options.stop_requested) {
+      sim.set_stop_request(options.stop_requested);
+    } else if (options.handle_signals) {
+      signals.emplace();
+      sim.set_stop_request([] { return InterruptHandler::requested(); });
+    }
+    how = sim.run(out_dir);
+    if (how == RunEnd::Interrupted) outcome.signal = InterruptHandler::signal_name();
   } catch (const NumericalFailure& e) {
     outcome.exit_code = kExitNumerical;
     outcome.failure = e.what();
@@ -100,7 +138,13 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   outcome.time = sim.time();
   outcome.steps = sim.step();
-  if (outcome.exit_code == kExitSuccess) {
+  if (outcome.exit_code == kExitSuccess) outcome.checkpoint = checkpoint_path;
+  if (how == RunEnd::Interrupted) {
+    outcome.exit_code = kExitInterrupted;
+    log.line(fmt::format("dustlift: interrupted by {} at t = {:.6e} s after {} steps; checkpoint written to {}",
+                         outcome.signal, sim.time(), sim.step(), checkpoint_path));
+    log.line(fmt::format("continue with: dustlift run --restart {}", checkpoint_path));
+  } else if (outcome.exit_code == kExitSuccess) {
     log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(), sim.step(),
                          outcome.wall_seconds));
     log.line(sim.work_summary());

@@ -8,6 +8,8 @@
 #include <iostream>
 #include <set>
 
+#include "solver/app/interrupt.hpp"
+#include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/app/run_summary.hpp"
 #include "solver/app/sweep_summary.hpp"
@@ -126,26 +128,37 @@ int run_sweep(const SweepDefinition& sweep, const std::string& out_dir, const Sw
       throw SceneError("sweep run '" + r.folder + "': " + e.what());
     }
   }
+  check_output_folder(out_dir, options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh);
   const Scene& base = scenes.front();
   const std::vector<double> stations = sweep.stations.empty() ? base.output.surface_stations : sweep.stations;
   SweepSummary summary(sweep.axes, base, stations);
 
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  prepare_output_folder(out_dir, options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh);
+  const InterruptHandler signals;  // across the runs: a Ctrl-C between two runs stops the sweep too
   int status = kExitSuccess;
-  for (std::size_t n = 0; n < runs.size(); ++n) {
+  for (std::size_t n = 0; n < runs.size() && !InterruptHandler::requested(); ++n) {
     const std::string folder = (fs::path(out_dir) / runs[n].folder).string();
     RunOptions run_options;
     run_options.scene_label = sweep.scene_path;
     run_options.echo_log = false;
+    run_options.command_line = options.command_line;
+    run_options.stop_requested = [] { return InterruptHandler::requested(); };
     const RunOutcome outcome = run_scene(scenes[n], folder, run_options);
     RunResults results = summarise_run(folder, scenes[n], stations, sweep.lift_threshold);
     summary.add(runs[n], outcome, results);
     summary.write(out_dir);  // after every run: a killed sweep keeps the rows it finished
-    if (outcome.exit_code != kExitSuccess) status = outcome.exit_code;
+    if (outcome.exit_code != kExitSuccess && status != kExitInterrupted) status = outcome.exit_code;
+    const std::string how = outcome.exit_code == kExitSuccess     ? "done"
+                            : outcome.exit_code == kExitNumerical ? "numerical failure (exit 3)"
+                                                                  : "interrupted by " + outcome.signal + " (exit 4)";
     std::cerr << fmt::format("[{}/{}] {}: {} after {} steps, t = {:.4e} s, {:.1f} s wall\n", n + 1, runs.size(),
-                             runs[n].folder, outcome.exit_code == kExitSuccess ? "done" : "numerical failure (exit 3)",
-                             outcome.steps, outcome.time, outcome.wall_seconds);
+                             runs[n].folder, how, outcome.steps, outcome.time, outcome.wall_seconds);
+    if (outcome.exit_code == kExitInterrupted) {
+      std::cerr << fmt::format("sweep stopped; continue that run with: dustlift run --restart {}\n", outcome.checkpoint);
+    }
   }
+  if (InterruptHandler::requested()) status = kExitInterrupted;
   std::cerr << "summary: " << (fs::path(out_dir) / "summary.csv").string() << ", summary.h5\n";
   return status;
 }

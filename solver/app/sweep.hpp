@@ -50,13 +50,17 @@ std::vector<SweepRun> sweep_runs(const SweepDefinition& sweep);
 SweepDefinition read_study(const std::string& path);
 
 struct SweepOptions {
-  int threads = 0;  ///< OpenMP threads per run (0: all cores)
+  int threads = 0;           ///< OpenMP threads per run (0: all cores)
+  bool overwrite = false;    ///< an existing sweep folder of an earlier sweep is emptied first
+  std::string command_line;  ///< recorded in every run's outputs
 };
 
-/// Validates every combination (a bad one: SceneError, nothing written), then runs them
-/// one after another through run_scene into out_dir/<folder>/ and writes out_dir/summary.csv
-/// and out_dir/summary.h5. Returns 0 if every run succeeded, 3 if any failed numerically
-/// (its row records exit status 3 and the sweep goes on).
+/// Validates every combination (a bad one: SceneError, nothing written) and the folder
+/// (missing or empty, or --overwrite), then runs them one after another through run_scene
+/// into out_dir/<folder>/ and writes out_dir/summary.csv and out_dir/summary.h5. Returns 0 if
+/// every run succeeded, 3 if any failed numerically (its row records exit status 3 and the
+/// sweep goes on), 4 when SIGINT/SIGTERM stopped it (the run in progress is checkpointed and
+/// recorded with exit status 4; the runs after it are not started).
 int run_sweep(const SweepDefinition& sweep, const std::string& out_dir, const SweepOptions& options);
 
 }  // namespace dustlift

@@ -1,5 +1,6 @@
 #include "solver/app/sweep_summary.hpp"
 
+#include <cctype>
 #include <filesystem>
 #include <fmt/core.h>
 #include <fstream>
@@ -14,7 +15,7 @@ std::vector<SeriesColumn> numeric_columns(const Scene& base, const std::vector<d
   std::vector<SeriesColumn> c{{"run_index", "1"}, {"exit_status", "1"}, {"wall_time", "s"}, {"steps", "1"},
                               {"end_time", "s"},  {"shock_x", "m"},     {"lifting_delay", "m"},
                               {"layer_top", "m"}};
-  for (double x : stations) c.push_back({fmt::format("h_at_x{:.6g}", x), "m"});
+  for (double x : stations) c.push_back({"h_at_x" + number_in_identifier(x), "m"});
   for (const BandConfig& band : base.output.bands) {
     for (const std::string& component : kSummaryForceColumns) {
       c.push_back({band.name + "_" + component + "_peak", "N"});
@@ -22,6 +23,14 @@ std::vector<SeriesColumn> numeric_columns(const Scene& base, const std::vector<d
     }
   }
   return c;
+}
+
+/// A scene key as a column name numpy and pandas keep: "particles.contact.damping" ->
+/// "particles_contact_damping".
+std::string key_column(const std::string& key) {
+  std::string name;
+  for (char c : key) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return name;
 }
 
 /// CSV field: quoted when it holds a comma, quote or newline (RFC 4180).
@@ -70,7 +79,7 @@ void SweepSummary::write(const std::string& dir) const {
   {
     std::ofstream f(tmp);
     f << "run";
-    for (const auto& k : keys_) f << "," << csv_field(k);
+    for (const auto& k : keys_) f << "," << key_column(k);
     for (std::size_t c = 0; c < numbers_.columns().size(); ++c) f << "," << numbers_.header(c);
     f << "\n";
     for (std::size_t r = 0; r < runs_.size(); ++r) {
@@ -84,7 +93,7 @@ void SweepSummary::write(const std::string& dir) const {
   const std::string h5 = (fs::path(dir) / "summary.h5").string();
   write_series_h5(h5, numbers_);
   write_string_column_h5(h5, "summary", "run", runs_);
-  for (std::size_t k = 0; k < keys_.size(); ++k) write_string_column_h5(h5, "summary", keys_[k], key_values_[k]);
+  for (std::size_t k = 0; k < keys_.size(); ++k) write_string_column_h5(h5, "summary", key_column(keys_[k]), key_values_[k]);
 }
 
 }  // namespace dustlift

@@ -4,9 +4,14 @@
 #include "solver/core/grid.hpp"
 #include "solver/scene/parse_sections.hpp"
 
+#include <fmt/format.h>
+
 namespace dustlift::scene_detail {
 
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid) {
+  t.expect_keys({"two_way", "drag", "compressibility_correction", "volume_fraction_correction", "volume_fraction_cap",
+                 "magnus", "magnus_coefficient", "magnus_convention", "lun_liu", "pressure_force", "rotation_torque",
+                 "torque_stokes_below", "heat_transfer", "interpolation", "influence_width", "max_volume_fraction"});
   if (!dem.enabled) {
     if (t.present()) t.fail("two_way", "a [coupling] section needs [particles]");
     return;
@@ -32,14 +37,16 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, cons
   c.interpolation = rule == "triangle" ? InterpolationRule::Triangle : InterpolationRule::Bilinear;
   const double min_cell = min_cell_width(grid);
   // Checked before influence_width, whose default is the parcel diameter: the message then
-  // names the key the user set.
-  if (dem.parcel_diameter > min_cell) {
-    throw SceneError(t.file() + ": key 'particles.parcel_diameter': parcels larger than the smallest grid cell (" +
-                     std::to_string(min_cell) + " m) break the unresolved-particle model (eqs. 12-16)");
+  // names the key the user set. Relative tolerance: a 2 mm parcel fits a 2.0 m / 1000 cell.
+  if (dem.parcel_diameter > min_cell * (1.0 + kCellTolerance)) {
+    throw SceneError(t.file() + ": key 'particles.parcel_diameter': parcels of " + fmt::format("{:.9g}", dem.parcel_diameter) +
+                     " m are larger than the smallest grid cell (" + fmt::format("{:.9g}", min_cell) +
+                     " m), which breaks the unresolved-particle model (eqs. 12-16)");
   }
-  c.influence_width = t.number("influence_width", dem.parcel_diameter, Range::non_negative());
-  if (c.influence_width > min_cell) {
-    t.fail("influence_width", "must not exceed the smallest cell (" + std::to_string(min_cell) + " m)");
+  c.influence_width = t.derived_number("influence_width", dem.parcel_diameter, "particles.parcel_diameter (Table 2)",
+                                       Range::non_negative());
+  if (c.influence_width > min_cell * (1.0 + kCellTolerance)) {
+    t.fail("influence_width", fmt::format("{:.9g} m must not exceed the smallest cell ({:.9g} m)", c.influence_width, min_cell));
   }
   c.max_volume_fraction = t.number("max_volume_fraction", c.max_volume_fraction, Range::open(0.0, 1.0));
   t.finish();

@@ -9,20 +9,28 @@
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
+#include "solver/scene/resource_limits.hpp"
+
+#include <fmt/format.h>
 
 namespace dustlift::scene_detail {
 namespace {
 
-/// [particles.contact] or [particles.wall_contact]; `fallback` gives the defaults.
-ContactParams parse_contact(TableReader t, const ContactParams& fallback) {
+/// [particles.contact], or [particles.wall_contact] whose defaults are the contact's
+/// (`from` names it: they are derived, so a resolved scene with another contact law follows it).
+ContactParams parse_contact(TableReader t, const ContactParams& fallback, const char* from = nullptr) {
+  t.expect_keys({"k_n", "k_t", "damping", "coulomb", "friction"});
+  const auto number = [&](const char* key, double v, Range r) {
+    return from != nullptr ? t.derived_number(key, v, std::string(from) + "." + key, r) : t.number(key, v, r);
+  };
   ContactParams c;
-  c.k_n = t.number("k_n", fallback.k_n, Range::positive());
-  c.k_t = t.number("k_t", fallback.k_t, Range::non_negative());
-  c.damping = t.number("damping", fallback.damping, Range::non_negative());
-  const bool coulomb = t.boolean("coulomb", std::isfinite(fallback.friction));
+  c.k_n = number("k_n", fallback.k_n, Range::positive());
+  c.k_t = number("k_t", fallback.k_t, Range::non_negative());
+  c.damping = number("damping", fallback.damping, Range::non_negative());
+  const bool coulomb = from != nullptr ? t.derived_boolean("coulomb", std::isfinite(fallback.friction), std::string(from) + ".coulomb")
+                                       : t.boolean("coulomb", std::isfinite(fallback.friction));
   if (coulomb) {
-    c.friction = t.number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5,
-                          Range::non_negative());
+    c.friction = number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5, Range::non_negative());
   } else {
     if (t.has("friction")) t.fail("friction", "only used with coulomb = true");
     c.friction = std::numeric_limits<double>::infinity();
@@ -44,6 +52,8 @@ LayerArrangement parse_arrangement(TableReader& lt) {
 }  // namespace
 
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary) {
+  t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature", "parcel_diameter", "layer",
+                 "real_per_parcel", "contact", "wall_contact", "courant", "skin", "fast_skin_substeps", "gravity", "g"});
   dem.enabled = t.boolean("enabled", t.present());
   if (!dem.enabled) {
     t.finish();
@@ -53,12 +63,17 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   dem.density = t.number("density", dem.density, Range::positive());
   dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
-  dem.parcel_diameter = t.number("parcel_diameter", dem.particle_diameter, Range::positive());
+  const bool parcel_diameter_given = t.has("parcel_diameter");
+  dem.parcel_diameter = t.derived_number("parcel_diameter", dem.particle_diameter, "particles.diameter (no coarse graining)",
+                                         Range::positive());
   if (dem.parcel_diameter < dem.particle_diameter) {
     t.fail("parcel_diameter", "must be at least the particle diameter (n_xy >= 1, eq. 11)");
   }
+  // The key a user changes to get smaller parcels (the diameter unless coarse graining is set).
+  const char* size_key = parcel_diameter_given ? "parcel_diameter" : "diameter";
 
   TableReader lt = t.table("layer");
+  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "arrangement", "settle", "seed", "volume_fraction", "file"});
   LayerConfig& L = dem.layer;
   L.x_min = lt.number("x_min", L.x_min);
   L.x_max = lt.number("x_max", L.x_max);
@@ -68,7 +83,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   if (!(L.y_max > L.y_min)) lt.fail("y_max", "must be greater than y_min");
   L.arrangement = parse_arrangement(lt);
   const bool settled = L.arrangement == LayerArrangement::Settled;
-  L.settle = lt.boolean("settle", settled || L.settle);
+  L.settle = lt.derived_boolean("settle", settled || L.settle, "particles.layer.arrangement");
   if (settled && !L.settle) lt.fail("settle", "arrangement = \"settled\" always settles the layer");
   // Real particles per parcel per metre of depth (§4), derived unless the scene sets it:
   // the layer rectangle then holds volume_fraction of solid in 3-D (15,024 /m for the
@@ -80,7 +95,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     if (lt.has("seed")) lt.fail("seed", "not used with arrangement = \"file\"");
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
     const ParcelFileLimits limits{grid.x.start, grid.x.end, grid.y.start, grid.y.end, dem.particle_diameter,
-                                  min_cell_width(grid)};
+                                  min_cell_width(grid) * (1.0 + kCellTolerance)};
     const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter, 0.0, 0.0, 0.0, dem.initial_temperature};
     dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
     // Parcels of diameter parcel_diameter that hold as many real particles (n ~ D^2, eq. 11).
@@ -94,6 +109,14 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
     L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+    // Before the lattice is planned (it is sized by the parcel count): the parcels must fit
+    // the machine.
+    const double parcels = L.volume_fraction * area / disc_area(dem.parcel_diameter);
+    const std::string shortfall = memory_shortfall(0.0, parcels);
+    if (!shortfall.empty() || parcels > static_cast<double>(kMaxParcels)) {
+      t.fail(size_key, fmt::format("{:.9g} m parcels fill the layer with {:.3g} parcels: the run {}", dem.parcel_diameter,
+                                   parcels, shortfall.empty() ? fmt::format("would need more than the {:.3g} parcel ids", static_cast<double>(kMaxParcels)) : shortfall));
+    }
     LayerLattice plan;
     try {
       plan = plan_layer(L, dem.parcel_diameter);
@@ -104,10 +127,12 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                                       dem.particle_diameter);
   }
   lt.finish();
-  dem.real_per_parcel = t.number("real_per_parcel", derived, Range::positive());
+  dem.real_per_parcel = t.derived_number("real_per_parcel", derived,
+                                         "the layer's volume_fraction and the particle and parcel diameters (§4)",
+                                         Range::positive());
 
   dem.contact = parse_contact(t.table("contact"), dem.contact);
-  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact);
+  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, "particles.contact");
 
   // The parcels live in the gas domain: its edges are walls for them, except where the
   // gas is periodic (then the parcels are periodic too). Parcels never leave the grid.
@@ -127,12 +152,28 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   }
 
   dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));
+  if (dem.courant < kMinCourant) {
+    t.fail("courant", fmt::format("{:g} is below {:g}: the DEM would take more than {:g} times the sub-steps of "
+                                  "the default {:g} (eq. 18), which buys no accuracy", dem.courant, kMinCourant,
+                                  DemConfig{}.courant / kMinCourant, DemConfig{}.courant));
+  }
   dem.skin = t.number("skin", dem.skin, Range::open_closed(0.0, 1.0));
   dem.fast_skin_substeps = t.number("fast_skin_substeps", dem.fast_skin_substeps, Range::non_negative());
-  const bool gravity = t.boolean("gravity", false);
-  const double g = t.number("g", 9.81, Range::non_negative());
-  dem.gravity_x = 0.0;
-  dem.gravity_y = gravity ? -g : 0.0;
+  // Gravity on the parcels: true (g along -y) or a vector [g_x, g_y] in m/s^2 (a vertical
+  // tube along x has it along -x).
+  if (t.is_array("gravity")) {
+    if (t.has("g")) t.fail("g", "only used with gravity = true (a gravity vector gives its own magnitude)");
+    const std::vector<double> g = t.number_list("gravity", {}, Range{});
+    if (g.size() != 2) t.fail("gravity", "a gravity vector has two components, [g_x, g_y] in m/s^2");
+    dem.gravity_x = g[0];
+    dem.gravity_y = g[1];
+  } else {
+    const bool gravity = t.boolean("gravity", false);
+    if (!gravity && t.has("g")) t.fail("g", "only used with gravity = true");
+    const double g = gravity ? t.number("g", 9.81, Range::non_negative()) : 0.0;
+    dem.gravity_x = 0.0;
+    dem.gravity_y = -g;
+  }
   t.finish();
 }
 

@@ -5,22 +5,31 @@
 
 namespace dustlift::scene_detail {
 
+/// Smallest CFL number and DEM Courant number accepted: below, a run takes more than a
+/// thousand times the steps of a usual value and gains no stability.
+inline constexpr double kMinCourant = 1e-3;
+/// Relative tolerance of size comparisons against grid cells: a cell computed as 2.0 / 1000
+/// comes out a rounding smaller than the 0.002 m parcel that is meant to fit it.
+inline constexpr double kCellTolerance = 1e-9;
+
 void parse_run(TableReader t, RunConfig& run);
 void parse_grid(TableReader t, GridConfig& grid);
 void parse_gas(TableReader t, GasConfig& gas);
 void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo);
-void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo);
+void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo, const GridConfig& grid);
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary);
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
-void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem);
+void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem, const GridConfig& grid);
 
 /// The smallest cell width of the grid along either axis, m.
 double min_cell_width(const GridConfig& grid);
 
-/// A gas state table: p and exactly one of rho or T, optional u, v.
+/// A gas state table: p and exactly one of rho or T, optional u, v; for thermally perfect air
+/// a temperature within the NASA-7 fits.
 PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo);
 
-/// Checks that need several sections (e.g. periodic boundaries come in pairs).
-void check_cross_section(const Scene& s);
+/// Refuses a temperature outside the fits of thermally perfect air (NASA-7, 200-6000 K),
+/// naming `key` of `t`; any positive temperature for a calorically perfect gas.
+void check_gas_temperature(TableReader& t, std::string_view key, double T, const ThermoConfig& thermo);
 
 }  // namespace dustlift::scene_detail

@@ -29,6 +29,22 @@ struct BandConfig {
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< m, box of initial positions
 };
 
+/// A point probe: gas values in the cell holding (x, y), sampled every step or at a cadence
+/// (OpenFOAM's `probes`): series probes, columns <name>_<field>.
+struct ProbeConfig {
+  std::string name;
+  double x = 0, y = 0;               ///< m
+  std::vector<std::string> fields;   ///< of kProbeFields
+};
+
+/// What a probe can record: the field name and its unit.
+struct ProbeField {
+  const char* name;
+  const char* unit;
+};
+inline constexpr ProbeField kProbeFields[] = {{"p", "Pa"}, {"rho", "kg/m^3"}, {"u", "m/s"}, {"v", "m/s"},
+                                              {"T", "K"},  {"mach", "1"},     {"alpha_p", "1"}};
+
 struct OutputConfig {
   double interval = 0.0;  ///< s of simulated time between VTK outputs; 0: initial + final only
   bool vtk = true;        ///< write gas.pvd / parcels.pvd
@@ -39,8 +55,15 @@ struct OutputConfig {
   double band_duration = 0.0;             ///< s, last bin end (default: run end time)
   double contact_window = 1e-5;           ///< s, contact-force averaging window (paper: 0.01 ms)
   double shock_threshold = 0.05;          ///< relative pressure rise marking the shock
-  /// s of simulated time between checkpoints (OUTDIR/checkpoint.h5); 0: only at the end.
+  /// s of simulated time between checkpoints (OUTDIR/checkpoint.h5); default: output.interval;
+  /// 0: none by simulated time.
   double checkpoint_interval = 0.0;
+  /// s of wall time after which the next step writes a checkpoint (so a long run never loses
+  /// more than this); 0: none by wall time. A checkpoint is also written at the end and on
+  /// SIGINT/SIGTERM.
+  double checkpoint_wall_interval = 300.0;
+  std::vector<ProbeConfig> probes;
+  double probe_interval = 0.0;  ///< s of simulated time between probe samples; 0: every step
 };
 
 struct GridConfig {

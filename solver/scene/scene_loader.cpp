@@ -20,8 +20,8 @@ void prune_empty_tables(toml::table& t) {
   for (const auto& k : empty) t.erase(k);
 }
 
-/// Applies one `a.b.c=value` override to the parsed document.
-void apply_override(toml::table& doc, const std::string& assignment) {
+/// Applies one `a.b.c=value` override to the parsed document; returns its key.
+std::string apply_override(toml::table& doc, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) {
     throw SceneError("--set '" + assignment + "': expected key.path=value");
@@ -45,7 +45,7 @@ void apply_override(toml::table& doc, const std::string& assignment) {
     if (part.empty()) throw SceneError("--set '" + assignment + "': empty key segment");
     if (dot == std::string::npos) {
       cur->insert_or_assign(part, *parsed.get("v"));
-      return;
+      return path;
     }
     toml::node* next = cur->get(part);
     if (next == nullptr) {
@@ -72,32 +72,40 @@ Scene parse_scene(const std::string& text, const std::string& name,
     s << name << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
     throw SceneError(s.str());
   }
-  for (const auto& o : overrides) apply_override(doc, o);
+  ParseContext context;
+  for (const auto& o : overrides) context.overrides.emplace_back(apply_override(doc, o), o);
 
   Scene scene;
   scene.source_file = name;
   scene.source_text = text;
   scene.overrides = overrides;
   toml::table resolved;
-  TableReader root(&doc, "", name, &resolved);
+  TableReader root(&doc, "", name, &resolved, &context);
+  root.expect_keys({"run", "grid", "gas", "boundary", "initial", "particles", "coupling", "output"});
   using namespace scene_detail;
   parse_run(root.table("run"), scene.run);
   parse_grid(root.table("grid", true), scene.grid);
   parse_gas(root.table("gas"), scene.gas);
   parse_boundary(root.table("boundary"), scene.gas.boundary, scene.gas.thermo);
-  parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo);
+  parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo, scene.grid);
   parse_particles(root.table("particles"), scene.particles, scene.grid, scene.gas.boundary);
   parse_coupling(root.table("coupling"), scene.coupling, scene.particles, scene.grid);
-  parse_output(root.table("output"), scene.output, scene.run, scene.particles);
+  parse_output(root.table("output"), scene.output, scene.run, scene.particles, scene.grid);
   root.finish();
-  check_cross_section(scene);
   prune_empty_tables(resolved);
 
+  // The inputs as values (running this text again gives the same scene), the defaults derived
+  // from them as comments (so that changed inputs derive them again).
   std::ostringstream out;
   out << "# Resolved scene: every key with the value used (defaults filled in).\n"
       << "# Source: " << name << "\n";
   for (const auto& o : overrides) out << "# --set " << o << "\n";
   out << resolved << "\n";
+  if (!context.derived.empty()) {
+    out << "\n# Derived defaults: not set above, so computed from other keys when this file is read\n"
+        << "# (values of this run; set a key to pin it):\n";
+    for (const auto& d : context.derived) out << "#   " << d << "\n";
+  }
   scene.resolved_toml = out.str();
   return scene;
 }

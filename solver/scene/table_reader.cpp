@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 namespace dustlift {
 
 bool Range::contains(double v) const {
@@ -48,14 +50,67 @@ std::string read_input_file(const std::string& path, const std::string& kind) {
 }
 
 TableReader::TableReader(const toml::table* table, std::string prefix, std::string file,
-                         toml::table* out)
-    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)), out_(out) {}
+                         toml::table* out, ParseContext* context)
+    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)), out_(out), context_(context) {}
+
+namespace {
+
+/// Edits (insert, delete, replace) turning a into b.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// A value as TOML text (the shortest that reads back to the same double).
+std::string toml_text(double v) { return fmt::format("{}", v); }
+
+}  // namespace
+
+void TableReader::expect_keys(std::initializer_list<std::string_view> keys) {
+  expected_.assign(keys.begin(), keys.end());
+  declared_ = true;
+  if (table_ == nullptr) return;
+  for (const auto& [k, v] : *table_) {
+    if (std::find(expected_.begin(), expected_.end(), k.str()) != expected_.end()) continue;
+    std::string best;
+    std::size_t best_distance = std::string::npos;
+    for (const auto& e : expected_) {
+      const std::size_t d = edit_distance(k.str(), e);
+      if (d <= std::max<std::size_t>(2, e.size() / 3) && d < best_distance) best_distance = d, best = e;
+    }
+    throw SceneError(where(&v, full_key(k.str())) + ": key '" + full_key(k.str()) + "': unknown key" +
+                     (best.empty() ? "" : " (did you mean '" + full_key(best) + "'?)"));
+  }
+}
 
 std::string TableReader::full_key(std::string_view key) const {
   return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
 }
 
-std::string TableReader::where(const toml::node* n) const {
+std::string TableReader::where(const toml::node* n, const std::string& full) const {
+  // Values from --set were parsed on their own: their source has no path.
+  const toml::node* at = n != nullptr ? n : table_;
+  if (at != nullptr && !at->source().path && context_ != nullptr) {
+    const std::string key = n != nullptr ? full : prefix_;
+    const std::pair<std::string, std::string>* best = nullptr;
+    for (const auto& o : context_->overrides) {
+      // The override's value, a part of it (an inline table), or a table made on its way.
+      const bool covers = key == o.first || key.rfind(o.first + ".", 0) == 0 || key.rfind(o.first + "[", 0) == 0 ||
+                          o.first.rfind(key + ".", 0) == 0;
+      if (covers && (best == nullptr || o.first.size() > best->first.size())) best = &o;
+    }
+    if (best != nullptr) return "--set '" + best->second + "'";
+  }
   std::ostringstream s;
   s << file_;
   if (n != nullptr && n->source().begin.line > 0) {
@@ -67,7 +122,7 @@ std::string TableReader::where(const toml::node* n) const {
 }
 
 void TableReader::fail(std::string_view key, const std::string& what) const {
-  throw SceneError(where(node(key)) + ": key '" + full_key(key) + "': " + what);
+  throw SceneError(where(node(key), full_key(key)) + ": key '" + full_key(key) + "': " + what);
 }
 
 const toml::node* TableReader::node(std::string_view key) const {
@@ -77,7 +132,42 @@ const toml::node* TableReader::node(std::string_view key) const {
 bool TableReader::has(std::string_view key) const { return node(key) != nullptr; }
 
 void TableReader::mark(std::string_view key) {
+  if (declared_ && std::find(expected_.begin(), expected_.end(), key) == expected_.end()) {
+    throw std::logic_error("TableReader: key '" + full_key(key) + "' read but not declared in expect_keys");
+  }
   if (std::find(read_.begin(), read_.end(), key) == read_.end()) read_.emplace_back(key);
+}
+
+bool TableReader::is_array(std::string_view key) const {
+  const toml::node* n = node(key);
+  return n != nullptr && n->is_array();
+}
+
+double TableReader::derived_number(std::string_view key, double derived, const std::string& from, Range range) {
+  if (auto v = optional_number(key, range)) return *v;
+  note_derived(key, toml_text(derived), from);
+  return derived;
+}
+
+bool TableReader::derived_boolean(std::string_view key, bool derived, const std::string& from) {
+  if (has(key)) return boolean(key, derived);
+  mark(key);
+  note_derived(key, derived ? "true" : "false", from);
+  return derived;
+}
+
+std::vector<double> TableReader::derived_number_list(std::string_view key, const std::vector<double>& derived,
+                                                     const std::string& from, Range range) {
+  if (has(key)) return number_list(key, derived, range);
+  mark(key);
+  std::string text = "[";
+  for (std::size_t k = 0; k < derived.size(); ++k) text += (k ? ", " : "") + toml_text(derived[k]);
+  note_derived(key, text + "]", from);
+  return derived;
+}
+
+void TableReader::note_derived(std::string_view key, const std::string& toml, const std::string& from) {
+  if (context_ != nullptr) context_->derived.push_back(full_key(key) + " = " + toml + "   # from " + from);
 }
 
 static const char* type_name(const toml::node& n) {
@@ -229,6 +319,28 @@ std::vector<double> TableReader::number_list(std::string_view key, std::vector<d
   return v;
 }
 
+std::vector<std::string> TableReader::string_list(std::string_view key, std::vector<std::string> fallback) {
+  mark(key);
+  const toml::node* n = node(key);
+  std::vector<std::string> v = std::move(fallback);
+  if (n != nullptr) {
+    const toml::array* arr = n->as_array();
+    if (arr == nullptr) fail(key, std::string("expected an array of strings, got ") + type_name(*n));
+    v.clear();
+    for (const auto& e : *arr) {
+      auto s = e.value_exact<std::string>();
+      if (!s) fail(key, std::string("expected an array of strings, found ") + type_name(e));
+      v.push_back(*s);
+    }
+  }
+  if (out_ != nullptr) {
+    toml::array a;
+    for (const auto& x : v) a.push_back(x);
+    out_->insert_or_assign(key, std::move(a));
+  }
+  return v;
+}
+
 TableReader TableReader::table(std::string_view key, bool required) {
   mark(key);
   const toml::node* n = node(key);
@@ -240,7 +352,7 @@ TableReader TableReader::table(std::string_view key, bool required) {
     (void)inserted;
     sub_out = it->second.as_table();
   }
-  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, sub_out);
+  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, sub_out, context_);
 }
 
 std::vector<TableReader> TableReader::table_array(std::string_view key) {
@@ -263,7 +375,7 @@ std::vector<TableReader> TableReader::table_array(std::string_view key) {
       sub_out = out_arr->back().as_table();
     }
     result.emplace_back((*arr)[k].as_table(), full_key(key) + "[" + std::to_string(k) + "]", file_,
-                        sub_out);
+                        sub_out, context_);
   }
   return result;
 }
@@ -272,7 +384,9 @@ void TableReader::finish() const {
   if (table_ == nullptr) return;
   for (const auto& [k, v] : *table_) {
     if (std::find(read_.begin(), read_.end(), k.str()) == read_.end()) {
-      throw SceneError(where(&v) + ": key '" + full_key(k.str()) + "': unknown key");
+      const bool known = declared_ && std::find(expected_.begin(), expected_.end(), k.str()) != expected_.end();
+      throw SceneError(where(&v, full_key(k.str())) + ": key '" + full_key(k.str()) + "': " +
+                       (known ? "not used with the other settings of this scene" : "unknown key"));
     }
   }
 }

@@ -1,7 +1,10 @@
 #pragma once
-// Validated reading of one TOML table: every key read is typed and range-checked,
-// every key left unread is an error, and each value read is recorded into the
-// resolved scene. Errors name the file, line and full dotted key (SceneError).
+// Validated reading of one TOML table: the keys a table knows are declared first (an unknown
+// key, e.g. a typo of a required one, is reported as unknown before anything is read), every
+// key read is typed and range-checked, every key left unread is an error, and each value read
+// is recorded into the resolved scene; defaults derived from other keys are noted as comments
+// instead, so the resolved scene derives them again. Errors name the file, line and full
+// dotted key, or the --set override the value came from (SceneError).
 #include <functional>
 #include <initializer_list>
 #include <limits>
@@ -40,10 +43,25 @@ struct Range {
 /// <kind>", "cannot open <kind>") otherwise.
 std::string read_input_file(const std::string& path, const std::string& kind);
 
+/// What all readers of one scene share.
+struct ParseContext {
+  /// The --set overrides as (dotted key, "key=value"): a value that came from one is named by
+  /// it in messages, not by a line of the file.
+  std::vector<std::pair<std::string, std::string>> overrides;
+  /// Derived defaults used, as "key = value  # from ..." (comments of the resolved scene).
+  std::vector<std::string> derived;
+};
+
 class TableReader {
  public:
   /// `table` may be null (section absent: all defaults). `out` receives the resolved values.
-  TableReader(const toml::table* table, std::string prefix, std::string file, toml::table* out);
+  TableReader(const toml::table* table, std::string prefix, std::string file, toml::table* out,
+              ParseContext* context = nullptr);
+
+  /// Declares every key this table knows (values and sub-tables) and fails on the first key
+  /// present that is not among them, naming the closest known key. Reading an undeclared key
+  /// afterwards is a programming error (std::logic_error).
+  void expect_keys(std::initializer_list<std::string_view> keys);
 
   bool has(std::string_view key) const;
   double number(std::string_view key, double fallback, Range range = {});
@@ -60,6 +78,20 @@ class TableReader {
                      std::initializer_list<std::string_view> allowed);
   std::vector<double> number_list(std::string_view key, std::vector<double> fallback,
                                   Range range = {});
+  std::vector<std::string> string_list(std::string_view key, std::vector<std::string> fallback);
+  bool is_array(std::string_view key) const;
+
+  /// Keys whose default is derived from other keys: read and recorded like the others when
+  /// present; when absent, `derived` is used and noted as a comment of the resolved scene
+  /// (`from` says what it comes from), so the resolved scene run with other inputs derives it
+  /// again instead of pinning this value.
+  double derived_number(std::string_view key, double derived, const std::string& from, Range range = {});
+  bool derived_boolean(std::string_view key, bool derived, const std::string& from);
+  std::vector<double> derived_number_list(std::string_view key, const std::vector<double>& derived,
+                                          const std::string& from, Range range = {});
+  /// Notes a derived default that is not a single value (e.g. a default array of tables),
+  /// `toml` being its text.
+  void note_derived(std::string_view key, const std::string& toml, const std::string& from);
   /// A sub-table; `required` makes its absence an error.
   TableReader table(std::string_view key, bool required = false);
   /// Array of tables (e.g. [[insitu.bands]]).
@@ -76,14 +108,18 @@ class TableReader {
 
  private:
   const toml::node* node(std::string_view key) const;
-  std::string where(const toml::node* n) const;
+  /// "file:line", or "--set 'a.b=v'" when the value (or the table holding it) came from one.
+  std::string where(const toml::node* n, const std::string& full) const;
   void mark(std::string_view key);
 
   const toml::table* table_;
   std::string prefix_;
   std::string file_;
   toml::table* out_;
+  ParseContext* context_;
   std::vector<std::string> read_;
+  std::vector<std::string> expected_;
+  bool declared_ = false;
 };
 
 }  // namespace dustlift

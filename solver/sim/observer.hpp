@@ -7,11 +7,18 @@
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/sim/snapshot.hpp"
 
 namespace dustlift {
 
 class ParcelSystem;         // solver/dem/parcel_system.hpp
 class GasParticleCoupling;  // solver/coupling/gas_particle_coupling.hpp
+
+/// How the run was made, for the files that record it (VTK field data, series.h5 attributes).
+struct Provenance {
+  std::string code_version;  ///< "0.1.0 (git a240b3b)"
+  std::string command_line;  ///< the dustlift command that started this run (segment)
+};
 
 struct StateView {
   const Scene* scene = nullptr;
@@ -26,6 +33,7 @@ struct StateView {
   double time = 0.0;                      ///< s
   long long step = 0;
   std::string output_dir;                 ///< the run's output folder
+  const Provenance* provenance = nullptr; ///< null: not recorded
 };
 
 class Observer {
@@ -37,8 +45,24 @@ class Observer {
   virtual void on_output(const StateView& view) = 0;
   /// Called after every step; keep it cheap (filters that need every step use it).
   virtual void on_step(const StateView&) {}
-  /// Called once after the last step (final state).
+  /// Called once after the last step of a run that reached its end (or step limit); not
+  /// after an interruption (the next segment continues the same series).
   virtual void on_finish(const StateView& view) { on_output(view); }
+
+  // ---- Continuing a run from a checkpoint (docs/reliability.md) ----
+  /// Name of this observer's state in a checkpoint (datasets under insitu/<key>/); empty for
+  /// an observer without state worth carrying.
+  virtual std::string state_key() const { return {}; }
+  /// Adds the state a continued run needs (series so far, filter sums, file numbering) to
+  /// `snapshot`, every name starting with `prefix` ("insitu/<key>/").
+  virtual void save_state(Snapshot&, const std::string& /*prefix*/) const {}
+  /// Takes that state back; throws SnapshotError naming the array when it does not fit.
+  virtual void restore_state(const Snapshot&, const std::string& /*prefix*/) {}
+  /// Called instead of on_start when the run continues a restored state: no new frame (the
+  /// restored time was written before the checkpoint, if it was an output time); the files
+  /// are brought back to the checkpoint's state. `previous_output_dir` is the folder the
+  /// restored run wrote to (the checkpoint's folder), which may differ from view.output_dir.
+  virtual void on_resume(const StateView&, const std::string& /*previous_output_dir*/) {}
 };
 
 }  // namespace dustlift

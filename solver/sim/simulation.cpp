@@ -6,6 +6,7 @@
 
 #include "solver/core/errors.hpp"
 #include "solver/dem/layer_generator.hpp"
+#include "solver/sim/time_targets.hpp"
 
 namespace dustlift {
 
@@ -53,6 +54,7 @@ StateView Simulation::view(const std::string& output_dir) const {
   v.time = time_;
   v.step = step_;
   v.output_dir = output_dir;
+  v.provenance = &provenance_;
   return v;
 }
 
@@ -88,7 +90,9 @@ std::vector<std::string> Simulation::enabled_effects() const {
   if (coupling_) {
     for (const std::string& m : coupling_->model_descriptions()) e.push_back(m);
   }
-  if (d.gravity_y != 0.0) e.push_back("gravity on the parcels");
+  if (d.gravity_x != 0.0 || d.gravity_y != 0.0) {
+    e.push_back("gravity on the parcels: (" + fmt_number(d.gravity_x) + ", " + fmt_number(d.gravity_y) + ") m/s^2");
+  }
   return e;
 }
 
@@ -144,51 +148,74 @@ void Simulation::set_checkpoint_writer(std::function<void(const Simulation&)> wr
   checkpoint_ = std::move(writer);
 }
 
-void Simulation::run(const std::string& output_dir) {
+void Simulation::set_stop_request(std::function<bool()> stop_requested) {
+  stop_requested_ = std::move(stop_requested);
+}
+
+RunEnd Simulation::run(const std::string& output_dir) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   const double time0 = time_;
-  auto last_report = t0;
-  const double end = scene_.run.end_time;
+  auto last_report = t0, last_checkpoint = t0;
   const double interval = scene_.output.interval;
+  const double end = end_target(scene_.run.end_time, interval);
   const double checkpoint_interval = scene_.output.checkpoint_interval;
+  const double checkpoint_wall = scene_.output.checkpoint_wall_interval;
   // First checkpoint multiple strictly after the start (a restart does not rewrite its own).
-  long long next_checkpoint = 1;
-  if (checkpoint_interval > 0.0) {
-    next_checkpoint = static_cast<long long>(std::floor(time_ / checkpoint_interval)) + 1;
-  }
+  long long next_checkpoint = checkpoint_interval > 0.0 ? first_multiple_after(time_, checkpoint_interval) : 1;
+  long long last_checkpoint_step = restored_ ? step_ : -1;
+  auto write_checkpoint = [&] {
+    const ScopedTimer t(timings_.checkpoints);
+    checkpoint_(*this);
+    last_checkpoint = clock::now();
+    last_checkpoint_step = step_;
+  };
 
   first_step_ = step_;
   first_cell_updates_ = gas_->cell_updates();
   first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
   first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
   first_parcel_substeps_ = parcels_ ? parcels_->parcel_substeps() : 0;
-  // A restarted run's first frame is the restored state (the segment's start).
-  for (auto& o : observers_) o->on_start(view(output_dir));
+  {
+    const StateView v = view(output_dir);
+    for (auto& o : observers_) {
+      if (restored_) {
+        o->on_resume(v, resumed_from_);
+      } else {
+        o->on_start(v);
+      }
+    }
+  }
+  RunEnd how = RunEnd::Completed;
   double dt = 0.0;
-  while (time_ < end * (1.0 - 1e-14)) {
-    if (scene_.run.max_steps > 0 && step_ >= scene_.run.max_steps) break;
+  while (time_ < end) {
+    if (scene_.run.max_steps > 0 && step_ >= scene_.run.max_steps) {
+      how = RunEnd::StepLimit;
+      break;
+    }
     double target = end;
-    if (interval > 0.0) target = std::min(target, static_cast<double>(next_output_) * interval);
-    dt = advance(target - time_);
+    if (interval > 0.0) target = std::min(target, multiple_time(next_output_, interval));
+    const double remaining = target - time_;
+    dt = advance(remaining);
+    if (dt == remaining) time_ = target;  // exactly on the target, not a rounding short of it
     const StateView v = view(output_dir);
     {
       const ScopedTimer t(timings_.observers);
       for (auto& o : observers_) o->on_step(v);
-      if (interval > 0.0 && time_ >= static_cast<double>(next_output_) * interval * (1.0 - 1e-12) &&
-          time_ < end * (1.0 - 1e-14)) {
+      if (interval > 0.0 && time_ >= multiple_time(next_output_, interval)) {
         for (auto& o : observers_) o->on_output(v);
-        ++next_output_;
+        next_output_ = first_multiple_after(time_, interval);
       }
     }
-    if (checkpoint_ && checkpoint_interval > 0.0 &&
-        time_ >= static_cast<double>(next_checkpoint) * checkpoint_interval * (1.0 - 1e-12) &&
-        time_ < end * (1.0 - 1e-14)) {
-      const ScopedTimer t(timings_.checkpoints);
-      checkpoint_(*this);
-      next_checkpoint = static_cast<long long>(std::floor(time_ / checkpoint_interval)) + 1;
-    }
+    const bool at_end = !(time_ < end);
+    const bool stop = stop_requested_ && stop_requested_();
     const auto now = clock::now();
+    if (checkpoint_ && !at_end && !stop) {
+      const bool by_time = checkpoint_interval > 0.0 && time_ >= multiple_time(next_checkpoint, checkpoint_interval);
+      const bool by_wall = checkpoint_wall > 0.0 && std::chrono::duration<double>(now - last_checkpoint).count() >= checkpoint_wall;
+      if (by_time || by_wall) write_checkpoint();
+      if (checkpoint_interval > 0.0) next_checkpoint = first_multiple_after(time_, checkpoint_interval);
+    }
     if (progress_ && std::chrono::duration<double>(now - last_report).count() >= scene_.run.progress_interval) {
       last_report = now;
       Progress p;
@@ -200,9 +227,18 @@ void Simulation::run(const std::string& output_dir) {
       p.eta_seconds = time_ > time0 ? p.wall_seconds * (end - time_) / (time_ - time0) : 0.0;
       progress_(p);
     }
+    if (stop && !at_end) {
+      how = RunEnd::Interrupted;
+      break;
+    }
   }
-  for (auto& o : observers_) o->on_finish(view(output_dir));
-  if (checkpoint_) checkpoint_(*this);
+  if (how != RunEnd::Interrupted) {
+    const ScopedTimer t(timings_.observers);
+    for (auto& o : observers_) o->on_finish(view(output_dir));
+  }
+  if (checkpoint_ && last_checkpoint_step != step_) write_checkpoint();
+  restored_ = false;
+  return how;
 }
 
 }  // namespace dustlift

@@ -1,6 +1,6 @@
 #pragma once
 // Drives a run: builds the models the scene enables, advances time (eq. 17 steps,
-// clipped to output and end times) and notifies observers at output times.
+// landing exactly on output and end times) and notifies observers at output times.
 #include <functional>
 #include <memory>
 #include <string>
@@ -22,31 +22,56 @@ struct Progress {
   double wall_seconds = 0.0, eta_seconds = 0.0;
 };
 
+/// How run() ended.
+enum class RunEnd {
+  Completed,    ///< reached run.end_time
+  StepLimit,    ///< stopped after run.max_steps
+  Interrupted,  ///< the stop request said so (SIGINT/SIGTERM): checkpointed, no final frame
+};
+
 class Simulation {
  public:
   explicit Simulation(const Scene& scene);
   ~Simulation();
 
   void add_observer(std::unique_ptr<Observer> observer);
+  /// What the observers record about how the run was made (StateView::provenance).
+  void set_provenance(Provenance provenance) { provenance_ = std::move(provenance); }
   void set_progress_callback(std::function<void(const Progress&)> callback);
 
-  /// Runs to the scene's end time (or max_steps). Throws NumericalFailure on a blow-up,
-  /// naming step, time, cell and variable. With a checkpoint writer set, it is called at the
-  /// end of the first step at or after each multiple of output.checkpoint_interval and
-  /// once after the last step (never after a failure). Steps are not clipped to checkpoint
-  /// times, so the step sequence does not depend on the checkpoint interval.
-  void run(const std::string& output_dir);
+  /// Runs to the scene's end time (or max_steps, or a stop request). Throws NumericalFailure
+  /// on a blow-up, naming step, time, cell and variable.
+  ///
+  /// Time targets: a step that would pass the next output time k * output.interval or the
+  /// end time is shortened to end exactly on it (the time is set to the target, not summed
+  /// up to it), so a run restarted from any checkpoint, or extended from its final one,
+  /// takes the same steps as the run that was never interrupted (an extension: when its
+  /// earlier end time was an output time).
+  ///
+  /// With a checkpoint writer set, it is called at the end of the first step at or after
+  /// each multiple of output.checkpoint_interval, after any step that ends at least
+  /// output.checkpoint_wall_interval wall seconds after the previous checkpoint, once after
+  /// the last step, and after the step during which a stop was requested (never after a
+  /// failure). Steps are not shortened for checkpoints: the result does not depend on when
+  /// they are written.
+  RunEnd run(const std::string& output_dir);
+
+  /// Polled after every step (and its outputs); true stops the run as RunEnd::Interrupted.
+  void set_stop_request(std::function<bool()> stop_requested);
 
   /// Called with the simulation whenever run() checkpoints (insitu/checkpoint.hpp writes it).
   void set_checkpoint_writer(std::function<void(const Simulation&)> writer);
 
   /// Everything the next step reads (gas, parcels with contact history, DEM internals,
-  /// coupling carry-over, time, step and output counters, scene text). See snapshot.hpp.
+  /// coupling carry-over, time, step and output counters, scene text) and the observers'
+  /// state (insitu/<key>/: series so far, filter sums, file numbering). See snapshot.hpp.
   Snapshot snapshot() const;
   /// Restores a snapshot taken from a simulation of the same scene (the caller builds this
-  /// one from the scene text the snapshot carries). Throws SnapshotError if it does not fit.
-  /// The run then continues bitwise as the one the snapshot was taken from.
-  void restore(const Snapshot& s);
+  /// one from the scene text the snapshot carries), with the same observers added first.
+  /// Throws SnapshotError if it does not fit. The run then continues bitwise as the one the
+  /// snapshot was taken from, and run() resumes the observers' series (Observer::on_resume)
+  /// instead of starting them; `previous_output_dir` is the folder they were written to.
+  void restore(const Snapshot& s, const std::string& previous_output_dir = {});
   /// Index of the next output time (next_output * output.interval).
   long long next_output() const { return next_output_; }
 
@@ -86,6 +111,10 @@ class Simulation {
   std::vector<std::unique_ptr<Observer>> observers_;
   std::function<void(const Progress&)> progress_;
   std::function<void(const Simulation&)> checkpoint_;
+  std::function<bool()> stop_requested_;
+  Provenance provenance_;
+  bool restored_ = false;            ///< run() resumes the observers instead of starting them
+  std::string resumed_from_;         ///< folder the restored run wrote to
   double time_ = 0.0;
   long long step_ = 0;
   long long next_output_ = 1;

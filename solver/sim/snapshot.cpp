@@ -4,41 +4,31 @@
 #include <string>
 
 #include "solver/sim/simulation.hpp"
+#include "solver/sim/time_targets.hpp"
 
 namespace dustlift {
 namespace {
 
-/// Per-parcel double arrays of the ParcelSystem, by checkpoint name (all of them: state,
-/// properties, force parts; the order of the system is kept).
+/// Per-parcel double arrays of the ParcelSystem, by checkpoint name: the checkpointed columns
+/// of its table (state, properties, force parts; in the order of the system) and the contact
+/// history's elongations (nbr_delta: one per neighbour slot; wall_delta: kWallCount per parcel).
 template <class PS>
 auto parcel_doubles(PS& p) {
-  return std::array{std::pair{"x", &p.x}, std::pair{"y", &p.y}, std::pair{"vx", &p.vx}, std::pair{"vy", &p.vy},
-                    std::pair{"omega", &p.omega}, std::pair{"temperature", &p.temperature},
-                    std::pair{"diameter", &p.diameter}, std::pair{"radius", &p.radius}, std::pair{"mass", &p.mass},
-                    std::pair{"inertia", &p.inertia}, std::pair{"n_real", &p.n_real},
-                    std::pair{"x_initial", &p.x_initial}, std::pair{"y_initial", &p.y_initial},
-                    std::pair{"contact_fx", &p.contact_fx}, std::pair{"contact_fy", &p.contact_fy},
-                    std::pair{"contact_torque", &p.contact_torque}, std::pair{"drag_fx", &p.drag_fx},
-                    std::pair{"drag_fy", &p.drag_fy}, std::pair{"magnus_fx", &p.magnus_fx},
-                    std::pair{"magnus_fy", &p.magnus_fy}, std::pair{"pressure_fx", &p.pressure_fx},
-                    std::pair{"pressure_fy", &p.pressure_fy}, std::pair{"fluid_torque", &p.fluid_torque},
-                    std::pair{"heat_rate", &p.heat_rate}, std::pair{"nbr_delta", &p.nbr_delta},
-                    std::pair{"wall_delta", &p.wall_delta}};
+  std::vector<std::pair<std::string, decltype(&p.x)>> named;
+  const auto& specs = ParcelSystem::builtin_specs();
+  const auto columns = p.builtin_columns();
+  for (std::size_t k = 0; k < specs.size(); ++k) {
+    if (specs[k].checkpointed) named.emplace_back(specs[k].name, columns[k]);
+  }
+  named.emplace_back("nbr_delta", &p.nbr_delta);
+  named.emplace_back("wall_delta", &p.wall_delta);
+  return named;
 }
 
 const char* const kPrimitiveNames[5] = {"rho", "u", "v", "p", "T"};
 
-template <class T>
-const std::vector<T>& find(const std::map<std::string, std::vector<T>>& m, const std::string& name,
-                           std::size_t expected_size = 0) {
-  const auto it = m.find(name);
-  if (it == m.end()) throw SnapshotError("missing array '" + name + "'");
-  if (expected_size != 0 && it->second.size() != expected_size) {
-    throw SnapshotError("array '" + name + "' has " + std::to_string(it->second.size()) + " values, expected " +
-                        std::to_string(expected_size));
-  }
-  return it->second;
-}
+/// Checkpoint group of an observer's state.
+std::string observer_prefix(const std::string& key) { return "insitu/" + key + "/"; }
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -56,6 +46,7 @@ Snapshot Simulation::snapshot() const {
   s.text["scene/resolved"] = scene_.resolved_toml;
   s.f64["run/time"] = {time_};
   s.f64["run/output_interval"] = {scene_.output.interval};
+  s.f64["run/end_time"] = {end_target(scene_.run.end_time, scene_.output.interval)};
   s.i64["run/step"] = {step_};
   s.i64["run/next_output"] = {next_output_};
   // Gas: every field step() reads, ghosts included (1-D, row-major (ny + 2g) x (nx + 2g)).
@@ -67,10 +58,13 @@ Snapshot Simulation::snapshot() const {
   }
   s.f64["gas/porosity"] = gas.porosity().raw();
   for (int k = 0; k < 5; ++k) s.f64[std::string("gas/") + kPrimitiveNames[k]] = gas.primitive_field(k).raw();
+  for (const auto& o : observers_) {
+    if (const std::string key = o->state_key(); !key.empty()) o->save_state(s, observer_prefix(key));
+  }
   if (!parcels_) return s;
 
   const ParcelSystem& p = *parcels_;
-  for (const auto& [name, v] : parcel_doubles(p)) s.f64[std::string("parcels/") + name] = *v;
+  for (const auto& [name, v] : parcel_doubles(p)) s.f64["parcels/" + name] = *v;
   s.i32["parcels/id"] = p.id;
   s.i32["parcels/nbr_offset"] = p.nbr_offset;
   s.i32["parcels/nbr_index"] = p.nbr_index;
@@ -93,8 +87,8 @@ Snapshot Simulation::snapshot() const {
   return s;
 }
 
-void Simulation::restore(const Snapshot& s) {
-  const auto shape = find(s.i64, "gas/shape", 2);
+void Simulation::restore(const Snapshot& s, const std::string& previous_output_dir) {
+  const auto shape = snapshot_array(s.i64, "gas/shape", 2);
   if (shape[0] != grid_.ny() + 2 * grid_.ghosts() || shape[1] != grid_.nx() + 2 * grid_.ghosts()) {
     throw SnapshotError("gas/shape " + std::to_string(shape[0]) + " x " + std::to_string(shape[1]) +
                         " does not match the scene's grid");
@@ -104,54 +98,68 @@ void Simulation::restore(const Snapshot& s) {
     throw SnapshotError(has_parcels ? "the checkpoint has parcels but the scene has none"
                                     : "the scene has particles but the checkpoint has no parcels");
   }
-  const double t = find(s.f64, "run/time", 1)[0];
-  const long long step = find(s.i64, "run/step", 1)[0];
-  long long next_output = find(s.i64, "run/next_output", 1)[0];
+  const double t = snapshot_array(s.f64, "run/time", 1)[0];
+  const long long step = snapshot_array(s.i64, "run/step", 1)[0];
+  long long next_output = snapshot_array(s.i64, "run/next_output", 1)[0];
   if (!std::isfinite(t) || t < 0.0 || step < 0 || next_output < 1) throw SnapshotError("run time or counters out of range");
   const std::size_t cells = gas_->conserved(0).size();
+  // The observers first: their state is checked as it is taken, and a failure leaves the
+  // simulation untouched (a failed restore ends the program anyway).
+  for (const auto& o : observers_) {
+    const std::string key = o->state_key();
+    if (key.empty()) continue;
+    const std::string prefix = observer_prefix(key);
+    const auto has_prefix = [&](const auto& m) {
+      const auto it = m.lower_bound(prefix);
+      return it != m.end() && it->first.compare(0, prefix.size(), prefix) == 0;
+    };
+    if (!has_prefix(s.f64) && !has_prefix(s.i64) && !has_prefix(s.text)) {
+      throw SnapshotError("no state for the in-situ output '" + key +
+                          "' (a checkpoint of an older dustlift, or of a run with other outputs)");
+    }
+    o->restore_state(s, prefix);
+  }
   // Read everything first, assign after: a failing restore leaves nothing half-written.
   std::array<const std::vector<double>*, 14> gas_fields{};
   for (int k = 0; k < 4; ++k) {
-    gas_fields[k] = &find(s.f64, "gas/conserved_" + std::to_string(k), cells);
-    gas_fields[4 + k] = &find(s.f64, "gas/source_" + std::to_string(k), cells);
+    gas_fields[k] = &snapshot_array(s.f64, "gas/conserved_" + std::to_string(k), cells);
+    gas_fields[4 + k] = &snapshot_array(s.f64, "gas/source_" + std::to_string(k), cells);
   }
-  gas_fields[8] = &find(s.f64, "gas/porosity", cells);
-  for (int k = 0; k < 5; ++k) gas_fields[9 + k] = &find(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
+  gas_fields[8] = &snapshot_array(s.f64, "gas/porosity", cells);
+  for (int k = 0; k < 5; ++k) gas_fields[9 + k] = &snapshot_array(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
 
   if (parcels_) {
     ParcelSystem& p = *parcels_;
     const std::size_t n = p.size();
     ParcelSystem restored = p;  // validated on the copy, then swapped in
     for (const auto& [name, v] : parcel_doubles(restored)) {
-      const std::string full = std::string("parcels/") + name;
-      const std::string sname = name;
-      const std::size_t expected = sname == "nbr_delta" ? 0 : sname == "wall_delta" ? n * kWallCount : n;
-      *v = find(s.f64, full, expected);
+      const std::size_t expected = name == "nbr_delta" ? 0 : name == "wall_delta" ? n * kWallCount : n;
+      *v = snapshot_array(s.f64, "parcels/" + name, expected);
     }
-    restored.id = find(s.i32, "parcels/id", n);
-    restored.nbr_offset = find(s.i32, "parcels/nbr_offset");
-    restored.nbr_index = find(s.i32, "parcels/nbr_index");
-    restored.nbr_image = find(s.i8, "parcels/nbr_image");
+    restored.id = snapshot_array(s.i32, "parcels/id", n);
+    restored.nbr_offset = snapshot_array(s.i32, "parcels/nbr_offset");
+    restored.nbr_index = snapshot_array(s.i32, "parcels/nbr_index");
+    restored.nbr_image = snapshot_array(s.i8, "parcels/nbr_image");
     ParcelInternals in;
-    in.inv_mass_real = find(s.f64, "dem/inv_mass_real", n);
-    in.inv_inertia_real = find(s.f64, "dem/inv_inertia_real", n);
-    in.x_build = find(s.f64, "dem/x_build", n);
-    in.y_build = find(s.f64, "dem/y_build", n);
-    const auto& mask = find(s.i8, "dem/wall_mask");
+    in.inv_mass_real = snapshot_array(s.f64, "dem/inv_mass_real", n);
+    in.inv_inertia_real = snapshot_array(s.f64, "dem/inv_inertia_real", n);
+    in.x_build = snapshot_array(s.f64, "dem/x_build", n);
+    in.y_build = snapshot_array(s.f64, "dem/y_build", n);
+    const auto& mask = snapshot_array(s.i8, "dem/wall_mask");
     in.wall_mask.assign(mask.begin(), mask.end());
-    in.time = find(s.f64, "dem/time", 1)[0];
-    const auto& gravity = find(s.f64, "dem/gravity", 2);
+    in.time = snapshot_array(s.f64, "dem/time", 1)[0];
+    const auto& gravity = snapshot_array(s.f64, "dem/gravity", 2);
     in.gravity_x = gravity[0];
     in.gravity_y = gravity[1];
-    in.needs_rebuild = find(s.i64, "dem/needs_rebuild", 1)[0] != 0;
+    in.needs_rebuild = snapshot_array(s.i64, "dem/needs_rebuild", 1)[0] != 0;
     // Checkpoints before per-parcel skins have none: the list is then rebuilt at the first step.
     if (const auto hs = s.f64.find("dem/half_skin"); hs != s.f64.end() && hs->second.size() == n) {
       in.half_skin = hs->second;
     } else {
       in.needs_rebuild = true;
     }
-    in.steps = find(s.i64, "dem/steps", 1)[0];
-    in.rebuilds = find(s.i64, "dem/rebuilds", 1)[0];
+    in.steps = snapshot_array(s.i64, "dem/steps", 1)[0];
+    in.rebuilds = snapshot_array(s.i64, "dem/rebuilds", 1)[0];
     // Ids must be a permutation of 0..n-1 (they name the parcels in the outputs).
     std::vector<char> seen(n, 0);
     for (std::int32_t i : restored.id) {
@@ -166,8 +174,8 @@ void Simulation::restore(const Snapshot& s) {
       throw SnapshotError(e.what());
     }
     GasParticleCoupling::CarriedState c;
-    c.alpha_p = find(s.f64, "coupling/alpha_p", cells);
-    c.rows_touched = static_cast<int>(find(s.i64, "coupling/rows_touched", 1)[0]);
+    c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);
+    c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
     try {
       coupling_->restore_carried_state(c);
     } catch (const std::invalid_argument& e) {
@@ -188,9 +196,11 @@ void Simulation::restore(const Snapshot& s) {
   const double interval = scene_.output.interval;
   if (stored_interval == s.f64.end() || stored_interval->second.size() != 1 ||
       stored_interval->second[0] != interval) {
-    next_output = interval > 0.0 ? static_cast<long long>(std::floor(t / interval * (1.0 + 1e-12))) + 1 : 1;
+    next_output = interval > 0.0 ? first_multiple_after(t, interval) : 1;
   }
   next_output_ = next_output;
+  restored_ = true;
+  resumed_from_ = previous_output_dir;
 }
 
 }  // namespace dustlift

@@ -26,4 +26,25 @@ class SnapshotError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The array `name` of one of a snapshot's maps; SnapshotError when it is missing or, with
+/// `expected_size` > 0, has another length.
+template <class T>
+const std::vector<T>& snapshot_array(const std::map<std::string, std::vector<T>>& m, const std::string& name,
+                                     std::size_t expected_size = 0) {
+  const auto it = m.find(name);
+  if (it == m.end()) throw SnapshotError("missing array '" + name + "'");
+  if (expected_size != 0 && it->second.size() != expected_size) {
+    throw SnapshotError("array '" + name + "' has " + std::to_string(it->second.size()) + " values, expected " +
+                        std::to_string(expected_size));
+  }
+  return it->second;
+}
+
+/// The text `name` of a snapshot; SnapshotError when it is missing.
+inline const std::string& snapshot_text(const Snapshot& s, const std::string& name) {
+  const auto it = s.text.find(name);
+  if (it == s.text.end()) throw SnapshotError("missing text '" + name + "'");
+  return it->second;
+}
+
 }  // namespace dustlift

@@ -64,7 +64,7 @@ TEST_F(AnalysisScripts, MakeFiguresFitsTheShockSpeedAndPlotsEverySeriesFamily) {
     sink.write(surface);
   }
   std::vector<double> x0{0.01}, y0{0.001}, y{0.0012}, fx{0.1}, fy{0.2}, arrival{0.0}, w{5.0};
-  BandForceSeries bands(dir.string(), {Band{"top", 0.0, 0.1, 0.0, 0.002}});
+  BandForceSeries bands({Band{"top", 0.0, 0.1, 0.0, 0.002}});
   for (int k = 0; k < 5; ++k) {
     BandParcelsView v;
     v.count = 1;
@@ -75,7 +75,7 @@ TEST_F(AnalysisScripts, MakeFiguresFitsTheShockSpeedAndPlotsEverySeriesFamily) {
     v.gas_rotation = w;
     bands.add(v, k * 1e-6);
   }
-  bands.write();
+  bands.write(sink);
   const auto [status, output] = run(script("make_figures.py") + " " + dir.string());
   ASSERT_EQ(status, 0) << output;
   std::smatch m;
@@ -120,6 +120,49 @@ TEST_F(AnalysisScripts, SodCompareReadsTheLastVtrAndMeasuresTheL1Error) {
   ASSERT_TRUE(std::regex_search(output, m, std::regex("pressure +L1 error ([0-9.eE+-]+)"))) << output;
   EXPECT_LT(std::stod(m[1]), 1e-15);
   EXPECT_TRUE(fs::exists(dir / "figures" / "sod_compare.png"));
+  fs::remove_all(dir);
+}
+
+TEST_F(AnalysisScripts, SummarizeRunPrintsTheReadmeLinesFromTheSeriesAndTheLastVtr) {
+  // A synthetic run: shock at x = 0.05 + 500 t, a profile h(x) = 1e-3 x + 1e-4 t / 1e-5 with a
+  // maximum at the last column, and one gas file.
+  const auto dir = fresh_dir("summarize");
+  SeriesSink sink(dir.string());
+  SeriesTable shock("shock_position", {{"time", "s"}, {"x", "m"}});
+  SeriesTable surface("surface_height", {{"time", "s"}, {"x", "m"}, {"height", "m"}});
+  for (int k = 0; k < 3; ++k) {
+    const double t = k * 1e-5;
+    shock.append_row(std::vector{t, 0.05 + 500.0 * t});
+    for (int i = 0; i <= 10; ++i) surface.append_row(std::vector{t, 0.01 * i, 1e-3 * (0.01 * i) + 1e-4 * k});
+  }
+  sink.write(shock);
+  sink.write(surface);
+  GasCellArrays g;
+  for (int i = 0; i <= 4; ++i) g.x_nodes.push_back(i * 0.01);
+  g.y_nodes = {0.0, 0.01};
+  g.resize(g.nx(), g.ny());
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    g.density[k] = 1.2 + 0.1 * static_cast<double>(k);
+    g.pressure[k] = 1e5 + 1e3 * static_cast<double>(k);
+    g.alpha_p[k] = 0.1 * static_cast<double>(k);
+  }
+  VtkSeriesFiles files(dir.string(), "gas", "vtr");
+  write_gas_vtr(g, files.next_path(2e-5));
+  files.commit(2e-5);
+  const auto [status, output] =
+      run(script("summarize_run.py") + " " + dir.string() + " --times 1e-5 --median-range 0.02 0.06 --station 0.05");
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("shock x at t = 0.01 ms: 55.0 mm"), std::string::npos) << output;
+  // max at x = 100 mm: 0.1 mm + 0.1 mm; median over 20-60 mm at x = 40 mm: 0.04 + 0.1 mm;
+  // at 50 mm: 0.05 + 0.1 mm.
+  EXPECT_NE(output.find("t = 0.01 ms: surface height max 0.20 mm (at x = 100 mm); median over 20-60 mm 0.14 mm; "
+                        "at x=50 mm 0.15 mm"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("last gas file gas_000000.vtr: cells 4, finite True, rho min 1.200, p min 1e+05, "
+                        "alpha_p max 0.300 (alpha_g min 0.700)"),
+            std::string::npos)
+      << output;
   fs::remove_all(dir);
 }
 

@@ -108,7 +108,37 @@ INSTANTIATE_TEST_SUITE_P(
         Row{"scene_and_restart", "", "{scene} --restart {scene}", "either a scene file or --restart"},
         Row{"restart_is_a_folder", "", "--restart {dir}", "is a folder"},
         Row{"restart_missing", "", "--restart {dir}/none.h5", "cannot open"},
-        Row{"restart_foreign", "", "--restart {scene}", "not a dustlift checkpoint"}),
+        Row{"restart_foreign", "", "--restart {scene}", "not a dustlift checkpoint"},
+        // A typo of a required key is an unknown key (with the key meant), not a missing one.
+        Row{"typo_of_required_key", replace_all(kScene, "end_time = 2e-6", "end_tme = 2e-6"), "{scene}",
+            "key 'run.end_tme': unknown key (did you mean 'run.end_time'?)"},
+        // A bad --set value is named by the override, not by a line of the scene file.
+        Row{"override_named", "", "{scene} --set particles.layer.volume_fraction=0.95",
+            "--set 'particles.layer.volume_fraction=0.95': key 'particles.layer.volume_fraction'"},
+        Row{"override_typo", "", "{scene} --set initial.stat.p=1e5", "--set 'initial.stat.p=1e5': key 'initial.stat': unknown key (did you mean 'initial.state'?)"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// Inputs a machine cannot run, or values no run needs: refused before anything is allocated
+// (a grid of 10^12 cells used to abort with std::bad_alloc, exit 134, leaving a folder).
+INSTANTIATE_TEST_SUITE_P(
+    Oversized, BadInput,
+    ::testing::Values(
+        Row{"grid_of_1e12_cells", "", "{scene} --set grid.x.cells=1000000 --set grid.y.cells=1000000", "grid.x.cells"},
+        Row{"grid_of_1e10_cells", "", "{scene} --set grid.x.cells=100000 --set grid.y.cells=100000", "grid.x.cells"},
+        Row{"stretched_grid_of_1e12_cells", "",
+            "{scene} --set grid.x={start=0.0,end=1.0,cell_size=1e-6} --set grid.y={start=0.0,end=1.0,cell_size=1e-6}",
+            "grid.x.cell_size"},
+        Row{"parcels_of_10_nm", "", "{scene} --set particles.diameter=1e-8", "key 'particles.diameter': 1e-08 m parcels fill the layer"},
+        Row{"coarse_parcels_of_20_nm", "", "{scene} --set particles.diameter=1e-8 --set particles.parcel_diameter=2e-8",
+            "particles.parcel_diameter"},
+        Row{"cfl_1e_320", "", "{scene} --set gas.scheme.cfl=1e-320", "gas.scheme.cfl"},
+        Row{"dem_courant_1e_9", "", "{scene} --set particles.courant=1e-9", "particles.courant"},
+        Row{"gas_at_20000_K", "", "{scene} --set \"initial.state={ p = 1e5, T = 20000.0 }\"", "initial.state.T"},
+        Row{"gas_at_50_K", "", "{scene} --set \"initial.state={ p = 1e5, T = 50.0 }\"", "initial.state.T"},
+        Row{"shock_beyond_the_fits", "",
+            "{scene} --set initial.kind=shock --set initial.mach=30 --set initial.position=0.001", "initial.mach"},
+        Row{"probe_outside_the_grid", "", "{scene} --set \"output.probes=[{ name = \\\"gauge\\\", x = 0.5, y = 0.001 }]\"",
+            "output.probes[0].x"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(BadInput, RestartRowsNeedingARealCheckpoint) {
@@ -130,10 +160,13 @@ TEST(BadInput, RestartRowsNeedingARealCheckpoint) {
   r = run_cli("run --restart " + checkpoint.string() + " --out " + out.string() + " --set grid.x.cells=16");
   expect_bad_input(r, "grid.x.cells", out, "restart_changes_physics");
 
-  // A restart must not overwrite the outputs of the run it continues.
-  r = run_cli("run --restart " + checkpoint.string() + " --out " + (dir / "first").string());
+  // A restart into another folder that holds files (here: a scene) must not mix them in.
+  fs::create_directories(dir / "busy");
+  write_file(dir / "busy" / "notes.txt", "mine");
+  r = run_cli("run --restart " + checkpoint.string() + " --out " + (dir / "busy").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("must not be the folder of its checkpoint"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("output folder '" + (dir / "busy").string() + "': not empty"), std::string::npos) << r.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "busy"), fs::directory_iterator()), 1);
 
   // Truncated copy.
   std::string bytes;

@@ -95,12 +95,12 @@ TEST(BandAverage, TableHasOneRowPerFilledBinAndIsWrittenAsCsv) {
   Synthetic s;
   const auto dir = std::filesystem::temp_directory_path() / ("dustlift_band_series_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
-  BandForceSeries series(dir.string(), {Band{"lower", 0.0, 0.1, 0.0, 0.002},
-                                        Band{"upper", 0.0, 0.1, 0.002, 0.004}},
+  BandForceSeries series({Band{"lower", 0.0, 0.1, 0.0, 0.002}, Band{"upper", 0.0, 0.1, 0.002, 0.004}},
                          options());
+  const SeriesSink sink(dir.string());
   for (int m = 0; m < 6; ++m) {
     series.add(s.view(m), (m + 0.5) * kBin);
-    series.write();  // rewritten whole at each output
+    series.write(sink);  // rewritten whole at each output
   }
   const SeriesTable lower = series.accumulators()[0].table();
   EXPECT_EQ(lower.rows(), 6u);

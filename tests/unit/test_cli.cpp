@@ -12,7 +12,9 @@
 #include <vtkRectilinearGrid.h>
 #include <vtkXMLRectilinearGridReader.h>
 
+#include "solver/app/info.hpp"
 #include "solver/gas/exact_riemann.hpp"
+#include "solver/sim/simulation.hpp"
 
 #include "support/run_cli.hpp"
 
@@ -34,6 +36,58 @@ TEST(Cli, InfoPrintsEffectsGridAndSteps) {
   EXPECT_NE(r.output.find("grid: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("estimated steps"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("particles: none"), std::string::npos) << r.output;
+}
+
+TEST(Cli, InfoEstimatesTheStepsOfAShockRunningInFromCoarseInflowCells) {
+  // The quickstart's geometry, shortened: the post-shock gas starts in the stretched cells
+  // upstream, so the t = 0 step (167 steps) is far longer than the steps once it reaches the
+  // 0.5 mm cells (the run takes 259).
+  const dustlift::Scene scene = dustlift::load_scene(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml",
+      {"grid.x.start=-0.02", "grid.x.end=0.02", "grid.x.cells_below=10", "grid.y.end=0.006", "grid.y.uniform_end=0.004",
+       "grid.y.cells_above=2", "particles.layer.x_max=0.02", "run.end_time=6e-5"});
+  dustlift::Simulation sim(scene);
+  const double estimate = dustlift::estimated_steps(sim), at_t0 = std::ceil(6e-5 / sim.gas().stable_dt());
+  sim.run("");
+  const double steps = static_cast<double>(sim.step());
+  std::printf("steps: %.0f taken, %.0f estimated, %.0f at the t = 0 step\n", steps, estimate, at_t0);
+  EXPECT_LT(std::abs(estimate - steps), 0.1 * steps);
+  EXPECT_GT(std::abs(at_t0 - steps), 0.3 * steps) << "the old estimate, for comparison";
+}
+
+TEST(Cli, VersionNamesTheBuild) {
+  const auto r = run_cli("--version");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex("^dustlift [0-9]+\\.[0-9]+\\.[0-9]+ \\((git [0-9a-f]|not built)")))
+      << r.output;
+}
+
+TEST(Cli, AFreshRunRefusesAnOccupiedFolderAndOverwriteReplacesAnEarlierRun) {
+  const auto dir = fresh_dir("cli_fresh_folder");
+  const std::string run = "run " + kSod + " --set grid.x.cells=50 --threads 1 --out " + (dir / "out").string();
+  ASSERT_EQ(run_cli(run).exit_code, 0);
+  write_file(dir / "out" / "vtk" / "gas_000099.vtr", "stale");  // e.g. from a longer earlier run
+  auto r = run_cli(run);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("not empty"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "vtk" / "gas_000099.vtr")) << "nothing touched";
+  r = run_cli(run + " --overwrite");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out" / "vtk" / "gas_000099.vtr")) << "the earlier run's files are gone";
+  // The run says what made it.
+  std::ifstream log(dir / "out" / "run.log");
+  std::string first, second;
+  std::getline(log, first);
+  std::getline(log, second);
+  EXPECT_EQ(first.rfind("dustlift 0.", 0), 0u) << first;
+  EXPECT_NE(second.find("command: "), std::string::npos) << second;
+  EXPECT_NE(second.find(" run " + kSod), std::string::npos) << second;
+  // --overwrite never empties a folder that holds no dustlift output.
+  fs::create_directories(dir / "mine");
+  write_file(dir / "mine" / "thesis.tex", "x");
+  r = run_cli("run " + kSod + " --out " + (dir / "mine").string() + " --overwrite");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "mine" / "thesis.tex"));
+  fs::remove_all(dir);
 }
 
 TEST(Cli, RunWritesResolvedSceneAndGasCollection) {

@@ -1,5 +1,5 @@
 // Offscreen rendering end to end: synthetic gas + parcel series written by the writers,
-// rendered by pvstates/render.py under `xvfb-run -a pvbatch`; the PNGs must exist, have a
+// rendered by pvstates/render.py under a private Xvfb (scripts/with-xvfb.sh); the PNGs must exist, have a
 // plausible size and not be a uniform image (pvbatch exits 0 even when loading failed).
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -78,6 +79,40 @@ void write_synthetic_run(const fs::path& dir) {
   }
 }
 
+/// Pixels whose RGB differ between two images of the same size, in rows [row0, row1) counted
+/// from the top (all rows when row1 = 0); -1 when the sizes differ.
+long differing_pixels(const fs::path& a, const fs::path& b, int row0 = 0, int row1 = 0) {
+  vtkNew<vtkPNGReader> ra, rb;
+  ra->SetFileName(a.string().c_str());
+  rb->SetFileName(b.string().c_str());
+  ra->Update();
+  rb->Update();
+  int da[3], db[3];
+  ra->GetOutput()->GetDimensions(da);
+  rb->GetOutput()->GetDimensions(db);
+  if (da[0] != db[0] || da[1] != db[1]) return -1;
+  auto* pa = vtkUnsignedCharArray::SafeDownCast(ra->GetOutput()->GetPointData()->GetScalars());
+  auto* pb = vtkUnsignedCharArray::SafeDownCast(rb->GetOutput()->GetPointData()->GetScalars());
+  const int nc = pa->GetNumberOfComponents();
+  if (row1 <= 0) row1 = da[1];
+  long n = 0;
+  for (int top = row0; top < row1; ++top) {
+    const int row = da[1] - 1 - top;  // VTK images start at the bottom row
+    for (int x = 0; x < da[0]; ++x) {
+      const vtkIdType p = static_cast<vtkIdType>(row) * da[0] + x;
+      bool same = true;
+      for (int ch = 0; ch < std::min(nc, 3); ++ch) same = same && pa->GetValue(p * nc + ch) == pb->GetValue(p * nc + ch);
+      n += !same;
+    }
+  }
+  return n;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
 struct ImageCheck {
   int width = 0, height = 0;
   std::size_t distinct_colors = 0;
@@ -128,8 +163,8 @@ void expect_rendered(const fs::path& png) {
 class Render : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!on_path("xvfb-run") || !on_path("pvbatch"))
-      FAIL() << "xvfb-run and pvbatch are needed for offscreen rendering; install them with "
+    if (!on_path("Xvfb") || !on_path("pvbatch"))
+      FAIL() << "Xvfb and pvbatch are needed for offscreen rendering; install them with "
                 "scripts/install-deps.sh (packages xvfb, xauth, paraview, python3-paraview)";
     // Each test its own folder: the shipped state must find data away from where it was saved.
     dir_ = fs::temp_directory_path() /
@@ -142,26 +177,19 @@ class Render : public ::testing::Test {
   void TearDown() override {
     if (!HasFailure()) fs::remove_all(dir_);  // keep the PNGs and render.log of a failure
   }
-  /// Runs render.py with extra arguments; returns wall seconds. `xvfb-run -a` picks a free
-  /// display by probing lock files, which races when two renders start at once (ctest -j2,
-  /// several users): start the probe at a per-process display number and retry once if
-  /// the X server connection failed.
+  /// Runs render.py with extra arguments under a private X server (scripts/with-xvfb.sh:
+  /// Xvfb picks its own free display, so concurrent renders never race for one); returns
+  /// wall seconds.
   double render(const std::string& extra) {
     const std::string script = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/render.py";
     const fs::path log = dir_ / "render.log";
     const auto start = std::chrono::steady_clock::now();
-    int status = 0;
-    std::string command;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-      const int display = 100 + static_cast<int>((::getpid() * 7 + attempt * 131) % 800);
-      command = "xvfb-run -a -n " + std::to_string(display) + " pvbatch " + script + " " +
-                dir_.string() + " " + extra + " > " + log.string() + " 2>&1";
-      status = std::system(command.c_str());
-      if (read_log(log).find("bad X server connection") == std::string::npos) break;
-    }
+    const std::string command = "bash " + std::string(DUSTLIFT_SOURCE_DIR) + "/scripts/with-xvfb.sh pvbatch " + script +
+                                " " + dir_.string() + " " + extra + " > " + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_EQ(status, 0) << command << "\nsee " << log;
+    EXPECT_EQ(status, 0) << command << "\n" << read_log(log);
     return seconds;
   }
   static std::string read_log(const fs::path& path) {
@@ -179,13 +207,54 @@ TEST_F(Render, PressureWithParcelsAndVorticityPngsAreNotBlank) {
   expect_rendered(dir_ / "figures" / "vorticity_000001.png");
   EXPECT_FALSE(fs::exists(dir_ / "figures" / "pressure_000000.png"));  // last time only
   EXPECT_TRUE(fs::exists(dir_ / "saved.pvsm"));
+  // The state a run folder gets names its data without the folder, so it opens anywhere.
+  const std::string state = read_text(dir_ / "pressure_parcels.pvsm");
+  EXPECT_NE(state.find("value=\"gas.pvd\""), std::string::npos);
+  EXPECT_EQ(state.find(dir_.string()), std::string::npos) << "no absolute path of this run in the state";
 }
 
-TEST_F(Render, ShippedStateRendersTheRunsData) {
+TEST_F(Render, ShippedStateHasRelativePathsALiveTimeLabelAndADataDrivenRange) {
   const std::string state = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/pressure_parcels.pvsm";
-  ASSERT_TRUE(fs::exists(state));
-  render("--state " + state);
-  expect_rendered(dir_ / "figures" / "state_000001.png");
+  const std::string xml = read_text(state);
+  EXPECT_NE(xml.find("<Element index=\"0\" value=\"gas.pvd\"/>"), std::string::npos);
+  EXPECT_NE(xml.find("<Element index=\"0\" value=\"parcels.pvd\"/>"), std::string::npos);
+  EXPECT_FALSE(std::regex_search(xml, std::regex("value=\"/[A-Za-z]"))) << "no absolute path";
+  EXPECT_NE(xml.find("type=\"PythonAnnotation\""), std::string::npos) << "a label that follows the time";
+  EXPECT_EQ(xml.find("t = 0.0500 ms"), std::string::npos) << "no fixed time text";
+  // AutomaticRescaleRangeMode 3: "Clamp and update every timestep".
+  EXPECT_NE(xml.find("AutomaticRescaleRangeMode\" number_of_elements=\"1\">\n        <Element index=\"0\" value=\"3\"/>"),
+            std::string::npos);
+  // Rendered with another run's data at each of its times: the images change with time,
+  // the label too (its rows at the top of the image).
+  render("--state " + state + " --all");
+  // Saved from a run that ended at 2e-5 s, its animation runs to this run's last time.
+  EXPECT_NE(read_log(dir_ / "render.log").find("state: 2 times from 0 to 5e-05 s; animation from 0 to 5e-05 s"),
+            std::string::npos)
+      << read_log(dir_ / "render.log");
+  const fs::path first = dir_ / "figures" / "state_000000.png", last = dir_ / "figures" / "state_000001.png";
+  expect_rendered(first);
+  expect_rendered(last);
+  const long changed = differing_pixels(first, last), label = differing_pixels(first, last, 0, 30);
+  std::cout << "shipped state: " << changed << " pixels differ between t = 0 and t = 5e-5 s, " << label
+            << " of them in the label rows\n";
+  EXPECT_GT(changed, 20000);
+  EXPECT_GT(label, 20);
+}
+
+
+TEST_F(Render, RunSceneScriptTakesPathsRelativeToTheCallersFolder) {
+  // scene and output folder given relative to where the user stands, not to the repository.
+  const fs::path cwd = dir_ / "user";
+  fs::create_directories(cwd);
+  fs::copy_file(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml", cwd / "tube.toml");
+  const std::string command = "cd " + cwd.string() + " && bash " + std::string(DUSTLIFT_SOURCE_DIR) +
+                              "/scripts/run-scene.sh tube.toml out --set grid.x.cells=100 --threads 1 > script.log 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(status, 0) << read_text(cwd / "script.log");
+  EXPECT_TRUE(fs::exists(cwd / "out" / "gas.pvd"));
+  EXPECT_TRUE(fs::exists(cwd / "out" / "figures" / "shock_position.png"));
+  expect_rendered(cwd / "out" / "figures" / "pressure_000004.png");
+  EXPECT_TRUE(fs::exists(cwd / "out" / "pressure_parcels.pvsm"));
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ TEST(SeriesSink, RepeatedWritesKeepEveryGroupAndTheFileSmall) {
   SeriesSink sink(dir.string());
   SeriesTable shock("shock_position", {{"time", "s"}, {"x", "m"}});
   SeriesTable stations("surface_height_stations",
-                       {{"time", "s"}, {"height_at_x0.1", "m"}, {"height_at_x0.2", "m"}});
+                       {{"time", "s"}, {"height_at_x0p1", "m"}, {"height_at_x0p2", "m"}});
   std::uintmax_t size_after_10 = 0;
   for (int output = 0; output < 200; ++output) {
     shock.append_row(std::vector{output * 1e-6, 0.01 + output * 1e-3});
@@ -108,10 +108,10 @@ TEST(SeriesSink, RepeatedWritesKeepEveryGroupAndTheFileSmall) {
 TEST(SeriesSink, ChangedColumnsReplaceTheGroupAndABrokenFileIsRecreated) {
   const auto dir = fresh_dir("broken");
   const auto path = (dir / "series" / "series.h5").string();
-  SeriesTable a("stations", {{"time", "s"}, {"height_at_x0.1", "m"}});
+  SeriesTable a("stations", {{"time", "s"}, {"height_at_x0p1", "m"}});
   a.append_row(std::vector{0.0, 1.0});
   write_series_h5(path, a);
-  SeriesTable b("stations", {{"time", "s"}, {"height_at_x0.3", "m"}, {"height_at_x0.4", "m"}});
+  SeriesTable b("stations", {{"time", "s"}, {"height_at_x0p3", "m"}, {"height_at_x0p4", "m"}});
   b.append_row(std::vector{0.0, 2.0, 3.0});
   write_series_h5(path, b);
   expect_tables_equal(b, read_series_h5(path, "stations"));
@@ -119,6 +119,22 @@ TEST(SeriesSink, ChangedColumnsReplaceTheGroupAndABrokenFileIsRecreated) {
   write_series_h5(path, a);
   expect_tables_equal(a, read_series_h5(path, "stations"));
   EXPECT_THROW(read_series_h5(path, "missing"), std::runtime_error);
+}
+
+TEST(SeriesNames, HeadersAreIdentifiersThatNumpyAndPandasKeep) {
+  EXPECT_EQ(csv_unit_token("m/s"), "m_per_s");
+  EXPECT_EQ(csv_unit_token("rad/s"), "rad_per_s");
+  EXPECT_EQ(csv_unit_token("1/s"), "per_s");
+  EXPECT_EQ(csv_unit_token("kg/m^3"), "kg_per_m3");
+  EXPECT_EQ(csv_unit_token("N m"), "N_m");
+  EXPECT_EQ(csv_unit_token("1"), "1");
+  EXPECT_EQ(number_in_identifier(0.025), "0p025");
+  EXPECT_EQ(number_in_identifier(-0.01), "m0p01");
+  EXPECT_EQ(number_in_identifier(0.1), "0p1");
+  EXPECT_EQ(number_in_identifier(2.0), "2");
+  EXPECT_EQ(SeriesTable("near_layer", {{"time", "s"}, {"u", "m/s"}}).header(1), "u_m_per_s");
+  EXPECT_THROW(SeriesTable("stations", {{"time", "s"}, {"height_at_x0.1", "m"}}), std::invalid_argument);
+  EXPECT_THROW(SeriesTable("forces-top", {{"tau", "s"}}), std::invalid_argument);
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ TEST(SeriesObservers, SurfaceHeightProfileSkipsEmptyColumnsAndStationsInterpolat
   EXPECT_EQ(profile.column(1)[3], 0.035);
   const auto stations = read_series_h5(h5, "surface_height_stations");
   ASSERT_EQ(stations.rows(), 2u);
-  EXPECT_EQ(stations.header(1), "height_at_x0.02_m");
+  EXPECT_EQ(stations.header(1), "height_at_x0p02_m");
   EXPECT_NEAR(stations.column(1)[1], 0.00275, 1e-15);
   EXPECT_TRUE(std::isnan(stations.column(2)[1]));  // between a full and an empty column
 }

@@ -101,10 +101,18 @@ TEST(ShockPosition, ExactSodSolutionOnAGridGivesTheShockWithinOneCell) {
 
 TEST(ShockPosition, RowsBelowYMinAreIgnoredAndTheFurthestRowWins) {
   const std::vector<double> xc{0.5, 1.5, 2.5, 3.5}, yc{0.5, 1.5, 2.5};
-  // Row 0: shock past x = 3.5 region (wall jet), row 1: at 1.5..2.5, row 2: at 0.5..1.5.
+  // Row 0: raised to the end (its shock has left), row 1: at 1.5..2.5, row 2: at 0.5..1.5.
   const std::vector<double> p{3, 3, 3, 3, 3, 3, 1, 1, 3, 1, 1, 1};
   EXPECT_DOUBLE_EQ(shock_position(xc, yc, p, 1.0, 0.05, 1.0), 1.5 + 0.975);
-  EXPECT_DOUBLE_EQ(shock_position(xc, yc, p, 1.0, 0.05, 0.0), 3.5);
+  EXPECT_DOUBLE_EQ(shock_position(xc, yc, p, 1.0, 0.05, 0.0), 1.5 + 0.975);
+  EXPECT_DOUBLE_EQ(shock_position(xc, yc, p, 1.0, 0.05, 2.0), 0.5 + 0.975);
+}
+
+TEST(ShockPosition, AShockThatLeftTheDomainIsNotReportedAtTheLastCell) {
+  const std::vector<double> xc{0.5, 1.5, 2.5, 3.5};
+  EXPECT_DOUBLE_EQ(shock_position_on_row(xc, std::vector<double>{3, 3, 3, 1}, 1.0, 0.05), 2.5 + 0.975);
+  EXPECT_TRUE(std::isnan(shock_position_on_row(xc, std::vector<double>{3, 3, 3, 3}, 1.0, 0.05)));
+  EXPECT_TRUE(std::isnan(shock_position(xc, std::vector<double>{0.5}, std::vector<double>{3, 3, 3, 3}, 1.0, 0.05, 0.0)));
 }
 
 }  // namespace

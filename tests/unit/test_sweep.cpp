@@ -169,8 +169,8 @@ TEST(Sweep, TwoByTwoSweepWritesFoldersSeriesSummaryAndPlot) {
   ASSERT_EQ(rows.size(), 5u) << "header + 4 runs";
   const auto& h = rows[0];
   EXPECT_EQ(h[0], "run");
-  EXPECT_EQ(h[1], "particles.contact.damping");
-  EXPECT_EQ(h[2], "particles.layer.arrangement");
+  EXPECT_EQ(h[1], "particles_contact_damping");  // the key, as an identifier
+  EXPECT_EQ(h[2], "particles_layer_arrangement");
   const std::vector<std::string> damping{"1e-4", "1e-4", "3e-4", "3e-4"}, arrangement{"columnar", "hexagonal",
                                                                                          "columnar", "hexagonal"};
   // Mach 1.44 into 300 K air (gamma 1.4, R 288.19): W = 501.0 m/s; the 5 % foot leads by ~2 cells.
@@ -190,7 +190,7 @@ TEST(Sweep, TwoByTwoSweepWritesFoldersSeriesSummaryAndPlot) {
     EXPECT_EQ(row[column(h, "lifting_delay_m")], "nan");
     // The undisturbed top (median h at t = 0) is the layer top within 0.1 cell (50 um).
     EXPECT_NEAR(std::stod(row[column(h, "layer_top_m")]), 0.0, 0.05e-3);
-    for (const char* station : {"h_at_x0.004_m", "h_at_x0.012_m"}) {
+    for (const char* station : {"h_at_x0p004_m", "h_at_x0p012_m"}) {
       EXPECT_NEAR(std::stod(row[column(h, station)]), 0.0, 0.05e-3) << station;
     }
     // The run's own folder: its series, and the resolved scene with the overrides.
@@ -222,7 +222,7 @@ TEST(Sweep, TwoByTwoSweepWritesFoldersSeriesSummaryAndPlot) {
   const auto names = read_string_column_h5(h5, "summary", "run");
   ASSERT_EQ(names.size(), 4u);
   EXPECT_EQ(names[1], rows[2][0]);
-  EXPECT_EQ(read_string_column_h5(h5, "summary", "particles.layer.arrangement")[3], "hexagonal");
+  EXPECT_EQ(read_string_column_h5(h5, "summary", "particles_layer_arrangement")[3], "hexagonal");
 
   // One PNG overlaying the four h(x).
   const auto plot = dustlift::testing::run_command("/usr/bin/python3 " + std::string(DUSTLIFT_SOURCE_DIR) + "/analysis/plot_sweep.py " +

@@ -7,7 +7,9 @@
 #include <vtkDataArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkFieldData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkRectilinearGrid.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLRectilinearGridReader.h>
@@ -201,6 +203,39 @@ TEST(VtkParcelWriter, PolyDataRoundTripsEveryArray) {
   expect_vector(pd->GetArray("force_drag"), a[11], a[12], "force_drag");
   expect_vector(pd->GetArray("force_magnus"), a[13], a[14], "force_magnus");
   expect_vector(pd->GetArray("force_pressure"), a[15], a[16], "force_pressure");
+}
+
+TEST(VtkParcelWriter, IdExtraColumnsAndFieldDataSayWhatTheFileIs) {
+  // Points in a sorted (not id) order: the id array names each parcel for ParaView.
+  std::vector<double> x{0.3, 0.1, 0.2}, y{0.0, 0.01, 0.02}, extra{7.0, 8.0, 9.0};
+  const std::vector<std::int32_t> id{2, 0, 1};
+  ParcelArraysView view;
+  view.count = 3;
+  view.position = {x, y};
+  view.id = id;
+  view.extra.push_back({"gas_rotation", extra});
+  const auto path = (fresh_dir("vtp_id") / "p.vtp").string();
+  write_parcels_vtp(view, path, VtkFileInfo{2.5e-5, "0.1.0 (git test)", "dustlift run s.toml"});
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  vtkDataArray* ids = poly->GetPointData()->GetArray("id");
+  ASSERT_NE(ids, nullptr);
+  EXPECT_EQ(ids->GetDataType(), VTK_INT);
+  for (vtkIdType k = 0; k < 3; ++k) EXPECT_EQ(ids->GetComponent(k, 0), id[static_cast<std::size_t>(k)]);
+  expect_array(poly->GetPointData()->GetArray("gas_rotation"), extra, "gas_rotation");
+  vtkFieldData* fd = poly->GetFieldData();
+  ASSERT_NE(fd->GetArray("TimeValue"), nullptr);
+  EXPECT_EQ(fd->GetArray("TimeValue")->GetComponent(0, 0), 2.5e-5);
+  auto* version = vtkStringArray::SafeDownCast(fd->GetAbstractArray("code_version"));
+  auto* command = vtkStringArray::SafeDownCast(fd->GetAbstractArray("command_line"));
+  ASSERT_NE(version, nullptr);
+  ASSERT_NE(command, nullptr);
+  EXPECT_EQ(version->GetValue(0), "0.1.0 (git test)");
+  EXPECT_EQ(command->GetValue(0), "dustlift run s.toml");
+  view.extra.front().values = std::span<const double>(extra).first(2);
+  EXPECT_THROW(write_parcels_vtp(view, path), std::invalid_argument);
 }
 
 TEST(VtkParcelWriter, OptionalArraysAreOmittedAndWrongLengthsRejected) {

@@ -1,0 +1,100 @@
+// Point probes as an in-situ series: what a pressure gauge in a shock tube records.
+#include <memory>
+#include <stdexcept>
+
+#include "insitu/observers.hpp"
+#include "insitu/provenance_of.hpp"
+#include "insitu/series_state.hpp"
+#include "solver/sim/time_targets.hpp"
+
+namespace dustlift {
+namespace {
+
+class ProbeObserver final : public Observer {
+ public:
+  explicit ProbeObserver(ProbeOptions options) : options_(std::move(options)), table_("probes", columns(options_)) {
+    if (options_.probes.empty()) throw std::invalid_argument("ProbeObserver: no probe");
+  }
+
+  void on_start(const StateView& view) override {
+    sample(view);
+    write(view);
+  }
+  void on_step(const StateView& view) override {
+    const bool due = options_.interval > 0.0 ? view.time >= multiple_time(next_sample_, options_.interval) : true;
+    if (due) sample(view);
+  }
+  void on_output(const StateView& view) override { write(view); }
+  void on_finish(const StateView& view) override {
+    sample(view);
+    write(view);
+  }
+
+  std::string state_key() const override { return "probes"; }
+  void save_state(Snapshot& s, const std::string& prefix) const override {
+    save_series_state({&table_}, last_time_, sampled_, s, prefix);
+    s.i64[prefix + "next_sample"] = {next_sample_};
+  }
+  void restore_state(const Snapshot& s, const std::string& prefix) override {
+    sampled_ = restore_series_state({&table_}, last_time_, s, prefix);
+    next_sample_ = snapshot_array(s.i64, prefix + "next_sample", 1)[0];
+  }
+  void on_resume(const StateView& view, const std::string&) override { write(view); }
+
+ private:
+  static std::vector<SeriesColumn> columns(const ProbeOptions& o) {
+    std::vector<SeriesColumn> c{{"time", "s"}};
+    for (const ProbeConfig& p : o.probes) {
+      for (const std::string& f : p.fields) {
+        for (const ProbeField& known : kProbeFields) {
+          if (f == known.name) c.push_back({p.name + "_" + f, known.unit});
+        }
+      }
+    }
+    return c;
+  }
+  double value(const StateView& v, const std::string& field, int i, int j) const {
+    const GasPrimitives& g = v.primitives;
+    if (field == "p") return (*g.p)(i, j);
+    if (field == "rho") return (*g.rho)(i, j);
+    if (field == "u") return (*g.u)(i, j);
+    if (field == "v") return (*g.v)(i, j);
+    if (field == "T") return (*g.T)(i, j);
+    if (field == "alpha_p") return v.alpha_p != nullptr ? (*v.alpha_p)(i, j) : 1.0 - (*g.alpha_g)(i, j);
+    if (!v.gas) throw std::invalid_argument("ProbeObserver: the Mach number needs the gas solver");
+    return std::hypot((*g.u)(i, j), (*g.v)(i, j)) / v.gas->sound_speed(i, j);  // "mach"
+  }
+  void sample(const StateView& view) {
+    if (sampled_ && view.time == last_time_) return;
+    if (!view.grid || !view.primitives.p) throw std::invalid_argument("ProbeObserver: the state view has no gas fields");
+    row_.assign(1, view.time);
+    for (const ProbeConfig& p : options_.probes) {
+      const int i = view.grid->x().locate(p.x), j = view.grid->y().locate(p.y);
+      for (const std::string& f : p.fields) row_.push_back(value(view, f, i, j));
+    }
+    table_.append_row(row_);
+    sampled_ = true;
+    last_time_ = view.time;
+    if (options_.interval > 0.0) next_sample_ = first_multiple_after(view.time, options_.interval);
+  }
+  void write(const StateView& view) {
+    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
+    sink_->write(table_);
+  }
+
+  ProbeOptions options_;
+  SeriesTable table_;
+  std::unique_ptr<SeriesSink> sink_;
+  std::vector<double> row_;
+  bool sampled_ = false;
+  double last_time_ = 0.0;
+  long long next_sample_ = 1;
+};
+
+}  // namespace
+
+std::unique_ptr<Observer> make_probe_observer(ProbeOptions options) {
+  return std::make_unique<ProbeObserver>(std::move(options));
+}
+
+}  // namespace dustlift

@@ -1,0 +1,17 @@
+#pragma once
+// `dustlift info SCENE`: what a run of the scene will do before it is started.
+#include "solver/scene/scene.hpp"
+#include "solver/sim/simulation.hpp"
+
+namespace dustlift {
+
+/// Steps to the end time, from the initial state: the time step (eq. 17) if the fastest
+/// signal present anywhere at t = 0 (|u| + c of the post-shock gas, say) reached the
+/// smallest cells, which it does as a shock runs in from a coarse inflow region. The t = 0
+/// step itself can be far too long: there the fast gas may sit only in stretched cells.
+double estimated_steps(const Simulation& sim);
+
+/// Prints the resolved scene, effects on, grid, parcels, memory and step estimates.
+void print_info(const Scene& scene, const Simulation& sim);
+
+}  // namespace dustlift
