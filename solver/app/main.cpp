@@ -4,11 +4,13 @@
 // 3 numerical failure, 4 interrupted (SIGINT/SIGTERM; checkpoint written).
 // `run --restart CHECKPOINT` continues a run in its folder (docs/reliability.md).
 #include <omp.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fmt/core.h>
 #include <iostream>
@@ -121,6 +123,14 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
 }  // namespace
 
 int main(int argc, char** argv) {
+  // OpenMP threads wait passively unless the user chose a policy: on a shared machine a
+  // spinning thread takes the core the other thread (or another job) needs, which made
+  // 2-thread runs many times slower while anything else ran (README, "Shared machines").
+  // libgomp reads OMP_WAIT_POLICY when it loads, before main, so the program restarts itself
+  // once with it set (if that fails, it carries on with the runtime's default).
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && setenv("OMP_WAIT_POLICY", "passive", 1) == 0) {
+    execv("/proc/self/exe", argv);
+  }
   CLI::App app{"dustlift: 2-D compressible CFD-DEM solver for shock-induced dust lifting"};
   app.set_version_flag("--version", std::string("dustlift ") + code_version());
   app.require_subcommand(1);
