@@ -67,6 +67,11 @@ struct GasConfig {
   /// Skip cells whose whole stencil rests at one state with no source: exact (the update
   /// would change no bit), set from the scene's run.skip_at_rest.
   bool skip_resting_cells = true;
+  /// m/s^2, gravity on the gas (scene gas.gravity = [g_x, g_y]): the body force a rho g in
+  /// the momenta and a rho g.u in the energy. Nonzero turns skipping off (no state rests).
+  double gravity_x = 0.0;
+  double gravity_y = 0.0;
+  bool has_gravity() const { return gravity_x != 0.0 || gravity_y != 0.0; }
 };
 
 /// Initial condition of the gas.

@@ -117,7 +117,7 @@ struct GasSolver::Impl {
       : grid(g), config(c), thermo(make_thermo(c.thermo)), muscl(muscl_settings(c.scheme)),
         viscous(c.transport.model != TransportModel::Inviscid), nx(g.nx()), ny(g.ny()), ng(g.ghosts()),
         stride(g.stride()), threaded(g.interior_cells() >= kMinCellsForThreads), R(c.thermo.gas_constant),
-        skip_resting(c.skip_resting_cells) {
+        skip_resting(c.skip_resting_cells && !c.has_gravity()) {
     if (ng < 2) throw std::invalid_argument("GasSolver: the grid needs at least 2 ghost layers");
     if (nx < 1 || ny < 1) throw std::invalid_argument("GasSolver: the grid has no cells");
     for (int k = 0; k < 4; ++k) {
@@ -462,6 +462,8 @@ struct GasSolver::Impl {
       r.inv_dx = inv_dx.data() + static_cast<std::size_t>(i0 + ng);
       r.inv_dy = geo(inv_dy, j);
       r.gas_constant = R;
+      r.gravity_x = config.gravity_x;
+      r.gravity_y = config.gravity_y;
       r.rho = rho.data() + c;
       r.u = u.data() + c;
       r.v = v.data() + c;
@@ -885,7 +887,8 @@ long long GasSolver::cell_updates() const { return impl_->cell_updates; }
 void GasSolver::resting_gas(RestingGas& out) const {
   const Impl& m = *impl_;
   const RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));
-  out.valid = ref.valid;
+  // Under gravity no gas rests: the body force changes every cell's momentum.
+  out.valid = ref.valid && !m.config.has_gravity();
   out.p = ref.p;
   out.T = ref.T;
   out.first_resting.resize(static_cast<std::size_t>(m.ny));

@@ -38,6 +38,20 @@ template <int PressureAxis>
   }
 }
 
+/// External sources plus the body force of gravity g on the stage state U = (a rho, a rho u,
+/// a rho v, a E): out[1] = S_1 + U_0 g_x, out[2] = S_2 + U_0 g_y, out[3] = S_3 + U_1 g_x + U_2 g_y.
+[[gnu::noinline]] void body_force_pass(const double* const* source, double* const* U, double gx, double gy,
+                                       double* const* out, int n) {
+  const double* __restrict m = U[0];
+  const double* __restrict mx = U[1];
+  const double* __restrict my = U[2];
+  for (int i = 0; i < n; ++i) {
+    out[1][i] = source[1][i] + m[i] * gx;
+    out[2][i] = source[2][i] + m[i] * gy;
+    out[3][i] = source[3][i] + mx[i] * gx + my[i] * gy;
+  }
+}
+
 /// rho, u, v and the specific internal energy of the new state.
 [[gnu::noinline]] void decode_pass(const double* __restrict m, const double* __restrict mx,
                                    const double* __restrict my, const double* __restrict en,
@@ -91,15 +105,22 @@ int stage_update_row(const Thermo& th, const StageRow& r, const StageScratch& s,
   if (n <= 0) return -1;
   for (int i = 0; i < n; ++i) s.changed[i] = 0.0;
   const double* const none = nullptr;
-  variable_pass<0>(r.fx[0], r.fy_below[0], r.fy_above[0], r.source[0], r.inv_dx, r.inv_dy, none, none, none, none,
+  const double* source[4] = {r.source[0], r.source[1], r.source[2], r.source[3]};
+  if (r.gravity_x != 0.0 || r.gravity_y != 0.0) {
+    // Gravity: a rho g in the momenta, a rho g.u in the energy, from this stage's input
+    // state (read before the passes below overwrite it).
+    body_force_pass(r.source, r.U, r.gravity_x, r.gravity_y, s.rhs, n);
+    for (int k = 1; k < 4; ++k) source[k] = s.rhs[k];
+  }
+  variable_pass<0>(r.fx[0], r.fy_below[0], r.fy_above[0], source[0], r.inv_dx, r.inv_dy, none, none, none, none,
                    none, none, r.U0[0], r.U[0], s.changed, dt, c_new, n);
-  variable_pass<1>(r.fx[1], r.fy_below[1], r.fy_above[1], r.source[1], r.inv_dx, r.inv_dy, r.fx_pressure,
+  variable_pass<1>(r.fx[1], r.fy_below[1], r.fy_above[1], source[1], r.inv_dx, r.inv_dy, r.fx_pressure,
                    r.fx_pressure + 1, r.alpha - 1, r.alpha, r.alpha + 1, r.p, r.U0[1], r.U[1], s.changed, dt, c_new,
                    n);
-  variable_pass<2>(r.fx[2], r.fy_below[2], r.fy_above[2], r.source[2], r.inv_dx, r.inv_dy, r.fy_pressure_below,
+  variable_pass<2>(r.fx[2], r.fy_below[2], r.fy_above[2], source[2], r.inv_dx, r.inv_dy, r.fy_pressure_below,
                    r.fy_pressure_above, r.alpha_below, r.alpha, r.alpha_above, r.p, r.U0[2], r.U[2], s.changed, dt,
                    c_new, n);
-  variable_pass<0>(r.fx[3], r.fy_below[3], r.fy_above[3], r.source[3], r.inv_dx, r.inv_dy, none, none, none, none,
+  variable_pass<0>(r.fx[3], r.fy_below[3], r.fy_above[3], source[3], r.inv_dx, r.inv_dy, none, none, none, none,
                    none, none, r.U0[3], r.U[3], s.changed, dt, c_new, n);
   decode_pass(r.U[0], r.U[1], r.U[2], r.U[3], r.alpha, s.rho, s.u, s.v, s.e, n);
   th.temperatures(s.e, r.T, s.T, n);

@@ -35,6 +35,8 @@ struct StageRow {
   const double* inv_dx;       ///< 1 / cell width per cell
   double inv_dy;              ///< 1 / cell height of the row
   double gas_constant;
+  double gravity_x = 0.0;     ///< m/s^2, body force on the gas (GasConfig::gravity_x)
+  double gravity_y = 0.0;
   // Primitives of the row: read (p for the pressure term, T as the Newton guess) and
   // overwritten with those of the new state where it changed.
   double* rho;

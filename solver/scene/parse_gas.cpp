@@ -45,7 +45,7 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
 }
 
 void parse_gas(TableReader t, GasConfig& gas) {
-  t.expect_keys({"thermo", "gamma", "gas_constant", "transport", "scheme"});
+  t.expect_keys({"thermo", "gamma", "gas_constant", "transport", "scheme", "gravity"});
   const auto thermo = t.choice("thermo", "thermally_perfect", {"thermally_perfect", "calorically_perfect"});
   gas.thermo.model = thermo == "thermally_perfect" ? ThermoModel::ThermallyPerfect
                                                    : ThermoModel::CaloricallyPerfect;
@@ -59,6 +59,12 @@ void parse_gas(TableReader t, GasConfig& gas) {
     gas.thermo.gamma = t.number("gamma", 1.4, Range::open(1.0, 5.0 / 3.0 + 1e-12));
   }
   gas.thermo.gas_constant = t.number("gas_constant", 288.190, Range::positive());
+  // Gravity on the gas, a vector like particles.gravity (off by default: the paper's eqs.
+  // 1-3 have none).
+  const std::vector<double> g = t.number_list("gravity", {0.0, 0.0});
+  if (g.size() != 2) t.fail("gravity", "a gravity vector has two components, [g_x, g_y] in m/s^2");
+  gas.gravity_x = g[0];
+  gas.gravity_y = g[1];
 
   TableReader tr = t.table("transport");
   tr.expect_keys({"model", "viscosity", "prandtl", "sutherland_mu_ref", "sutherland_t_ref", "sutherland_s"});

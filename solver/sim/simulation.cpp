@@ -74,6 +74,9 @@ std::vector<std::string> Simulation::enabled_effects() const {
                     : g.scheme.reconstruction == Reconstruction::Muscl2   ? "MUSCL 2nd order"
                                                                           : "MUSCL 3rd order (kappa = 1/3)";
   e.push_back(std::string("convection: SLAU2 + ") + rec + ", SSP-RK3");
+  if (g.has_gravity())
+    e.push_back("gravity on the gas: [" + fmt_number(g.gravity_x) + ", " + fmt_number(g.gravity_y) +
+                "] m/s^2 (no cell skipped at rest)");
   if (!scene_.particles.enabled) {
     e.push_back("particles: none (gas only)");
     return e;

@@ -1,0 +1,268 @@
+#!/usr/bin/python3
+"""Every number Shimura & Matsuo state about one run of the paper scene, measured on ours.
+
+Usage: /usr/bin/python3 analysis/paper_compare.py RUN_DIR [--json OUT] [--time T]
+
+RUN_DIR is an output folder of `dustlift run` (cases/paper/vertical_shock.toml or a study
+run of it). Reads its series (series/*.csv) and gas VTK files (vtk/gas_*.vtr, through
+Debian's python3-vtk9) and prints one JSON object; docs/results.md explains each entry and
+analysis/paper_results.py turns several runs into its tables and figures.
+
+Conventions (docs/coupling.md, "Magnus convention"): our rotations and vorticity are
+counter-clockwise positive; the paper's Omega_g and omega_p are clockwise positive, so the
+"*_paper" entries are the negatives of our columns. Forces are per parcel as the band
+series write them (with n_xy = 1 one real particle's force, as the paper plots them),
+reported here in micro-newtons.
+
+Band forces: the band series hold 1 us bins of the time since shock arrival tau
+(output.band_bin_width). The paper plots contact forces averaged over 0.01 ms and the other
+forces without saying how they were sampled; so every peak is given for the 1 us bins and
+for 10 us windows (the sample-weighted mean over consecutive bins), the second being the
+paper's stated averaging.
+"""
+import argparse
+import csv
+import glob
+import json
+import math
+import os
+import sys
+
+import numpy as np
+
+LIFT_THRESHOLD = 1.0e-4      # m above the undisturbed top that counts as lifted (sweep default)
+STATIONS = [0.050, 0.100, 0.150, 0.200, 0.250]   # m: the h(x) read-outs of docs/results.md
+WINDOW = 1.0e-5              # s: the paper's 0.01 ms averaging window
+
+
+def numeric(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    out = {}
+    for k, name in enumerate(header):
+        out[name] = np.array([float(r[k]) if r[k] not in ("", "nan", "NaN") else math.nan for r in body])
+    return out
+
+
+def series(run, name):
+    path = os.path.join(run, "series", name + ".csv")
+    return numeric(path) if os.path.exists(path) else None
+
+
+def shock_at(shock, t):
+    """Shock x at time t, linear between samples."""
+    return float(np.interp(t, shock["time_s"], shock["x_m"]))
+
+
+def profile_at(surface, t):
+    times = np.unique(surface["time_s"])
+    t_near = times[np.argmin(np.abs(times - t))]
+    keep = surface["time_s"] == t_near
+    return float(t_near), surface["x_m"][keep], surface["height_m"][keep]
+
+
+def lifting_delay(x, h, shock_x, top, threshold=LIFT_THRESHOLD):
+    """The same rule as insitu/lifting_delay.cpp: from the shock backwards, the first column
+    whose height exceeds top + threshold, interpolated to the crossing."""
+    level = top + threshold
+    below = None
+    for k in range(len(x) - 1, -1, -1):
+        if x[k] > shock_x or math.isnan(h[k]):
+            continue
+        if h[k] > level:
+            if below is None:
+                return shock_x - x[k]
+            s = (level - h[below]) / (h[k] - h[below])
+            return shock_x - (x[below] + s * (x[k] - x[below]))
+        below = k
+    return math.nan
+
+
+def windowed(tau, samples, value, width):
+    """Sample-weighted means of `value` over consecutive windows of `width` in tau:
+    (window centres, means)."""
+    ok = np.isfinite(value) & (samples > 0)
+    tau, samples, value = tau[ok], samples[ok], value[ok]
+    if len(tau) == 0:
+        return np.array([]), np.array([])
+    index = np.floor(tau / width).astype(int)
+    centres, means = [], []
+    for i in np.unique(index):
+        m = index == i
+        centres.append((i + 0.5) * width)
+        means.append(float(np.sum(samples[m] * value[m]) / np.sum(samples[m])))
+    return np.array(centres), np.array(means)
+
+
+def extreme(tau, value, sign):
+    """(value, tau) of the largest value of the given sign (+1 max, -1 min)."""
+    ok = np.isfinite(value)
+    if not ok.any():
+        return math.nan, math.nan
+    v = np.where(ok, sign * value, -np.inf)
+    k = int(np.argmax(v))
+    return float(value[k]), float(tau[k])
+
+
+def mean_between(tau, samples, value, t0, t1):
+    m = (tau >= t0) & (tau < t1) & np.isfinite(value) & (samples > 0)
+    if not m.any():
+        return math.nan
+    return float(np.sum(samples[m] * value[m]) / np.sum(samples[m]))
+
+
+def band_numbers(band):
+    """Peaks and means of one band's force series, in uN and us."""
+    tau, n = band["tau_s"], band["samples_1"]
+    out = {}
+    for name, column, sign in (("contact_up", "contact_window_y_N", +1), ("drag_down", "drag_y_N", -1),
+                               ("pressure_down", "pressure_y_N", -1), ("magnus_up", "magnus_y_N", +1)):
+        v, t = extreme(tau, band[column], sign)
+        out[name + "_1us_uN"], out[name + "_1us_tau_us"] = v * 1e6, t * 1e6
+        wt, wv = windowed(tau, n, band[column], WINDOW)
+        v, t = extreme(wt, wv, sign)
+        out[name + "_10us_uN"], out[name + "_10us_tau_us"] = v * 1e6, t * 1e6
+    out["drag_y_late_uN"] = mean_between(tau, n, band["drag_y_N"], 1.0e-4, 3.0e-4) * 1e6
+    out["magnus_y_late_uN"] = mean_between(tau, n, band["magnus_y_N"], 1.0e-4, 2.0e-4) * 1e6
+    out["contact_y_late_uN"] = mean_between(tau, n, band["contact_y_N"], 1.0e-4, 2.0e-4) * 1e6
+    gas = mean_between(tau, n, band["gas_rotation_rad_per_s"], 0.9e-4, 1.1e-4)
+    particle = mean_between(tau, n, band["particle_rotation_rad_per_s"], 0.9e-4, 1.1e-4)
+    out["gas_rotation_paper_0p1ms"] = -gas
+    out["particle_rotation_paper_0p1ms"] = -particle
+    out["gas_over_particle_rotation_0p1ms"] = gas / particle if particle != 0 else math.nan
+    out["particle_rotation_paper_mean_0p05_0p3ms"] = -mean_between(
+        tau, n, band["particle_rotation_rad_per_s"], 0.5e-4, 3.0e-4)
+    h0 = mean_between(tau, n, band["height_m"], 0.0, 1.0e-6)
+    out["height_change_0p1ms_mm"] = (mean_between(tau, n, band["height_m"], 0.95e-4, 1.05e-4) - h0) * 1e3
+    out["height_change_0p3ms_mm"] = (mean_between(tau, n, band["height_m"], 2.95e-4, 3.05e-4) - h0) * 1e3
+    return out
+
+
+def read_vtr(path):
+    import vtk  # python3-vtk9 (Debian)
+    from vtk.util.numpy_support import vtk_to_numpy
+    r = vtk.vtkXMLRectilinearGridReader()
+    r.SetFileName(path)
+    r.Update()
+    g = r.GetOutput()
+    xn = vtk_to_numpy(g.GetXCoordinates())
+    yn = vtk_to_numpy(g.GetYCoordinates())
+    nx, ny = len(xn) - 1, len(yn) - 1
+    cells = g.GetCellData()
+    def field(name, comp=None):
+        a = vtk_to_numpy(cells.GetArray(name))
+        if comp is not None:
+            a = a[:, comp]
+        return a.reshape(ny, nx)
+    t = g.GetFieldData().GetArray("TimeValue").GetValue(0)
+    return {"t": t, "x": 0.5 * (xn[1:] + xn[:-1]), "y": 0.5 * (yn[1:] + yn[:-1]), "p": field("pressure"),
+            "u": field("velocity", 0), "vorticity": field("vorticity"), "alpha_p": field("alpha_p")}
+
+
+def gas_at(run, t):
+    files = sorted(glob.glob(os.path.join(run, "vtk", "gas_*.vtr")))
+    best = None
+    for f in files:
+        # file times are in the .pvd; reading each header is cheap enough for 10 files
+        g = read_vtr(f)
+        if best is None or abs(g["t"] - t) < abs(best["t"] - t):
+            best = g
+    return best
+
+
+def shock_row(g, j, p0):
+    """x of the shock in row j: the largest x where p exceeds 1.05 p0 (the series' threshold)."""
+    above = np.nonzero(g["p"][j] > 1.05 * p0)[0]
+    return float(g["x"][above[-1]]) if len(above) else math.nan
+
+
+def field_numbers(run, top):
+    """Fig. 9 (shock shape at 0.5 ms), Fig. 13 (vorticity above the layer), Fig. 8d (pressure
+    near the layer's leading part) from the gas VTK files."""
+    out = {}
+    g = gas_at(run, 5.0e-4)
+    if g is None:
+        return out
+    out["field_time_ms"] = g["t"] * 1e3
+    p0 = float(np.median(g["p"][:, -5]))
+    rows = {"y_m1p0mm": -1.0e-3, "y_m0p1mm": -0.125e-3, "y_p1mm": 1.0e-3, "y_p5mm": 5.0e-3, "y_p20mm": 20.0e-3}
+    for name, y in rows.items():
+        j = int(np.argmin(np.abs(g["y"] - y)))
+        out["shock_x_" + name + "_mm"] = shock_row(g, j, p0) * 1e3
+    # Fig. 9c: inside the layer the gas slows right behind the shock (paper: x < 232 mm at 0.5 ms)
+    j_in = int(np.argmin(np.abs(g["y"] + 1.0e-3)))
+    j_out = int(np.argmin(np.abs(g["y"] - 5.0e-3)))
+    xs = out["shock_x_y_m1p0mm_mm"] * 1e-3
+    behind = (g["x"] > 0.05) & (g["x"] < xs - 0.005)
+    out["u_inside_over_outside_behind_shock"] = float(np.mean(g["u"][j_in][behind]) / np.mean(g["u"][j_out][behind]))
+    # Fig. 13b: the gas rotation above the layer, paper convention (-vorticity/2), over
+    # 0 < y - top < 2 mm behind the shock and past the leading edge (50 mm < x < x_s - 5 mm)
+    xsurf = out["shock_x_y_p1mm_mm"] * 1e-3
+    band = (g["y"] > top) & (g["y"] < top + 2.0e-3)
+    cols = (g["x"] > 0.05) & (g["x"] < xsurf - 0.005)
+    w = -0.5 * g["vorticity"][np.ix_(band, cols)]
+    out["gas_rotation_paper_above_layer_mean"] = float(np.mean(w))
+    out["gas_rotation_paper_above_layer_positive_share"] = float(np.mean(w > 0))
+    # Fig. 8d: pressure just above the layer near its leading edge, at every output time
+    fig8 = []
+    for f in sorted(glob.glob(os.path.join(run, "vtk", "gas_*.vtr"))):
+        h = read_vtr(f)
+        j = int(np.argmin(np.abs(h["y"] - (top + 0.5e-3))))
+        def p_at(x):
+            return float(np.interp(x, h["x"], h["p"][j]))
+        fig8.append({"t_ms": h["t"] * 1e3, "p_10mm_kPa": p_at(0.010) / 1e3, "p_20mm_kPa": p_at(0.020) / 1e3,
+                     "p_40mm_kPa": p_at(0.040) / 1e3})
+    out["fig8d_pressure_above_layer"] = fig8
+    return out
+
+
+def compare(run, t_profile):
+    out = {"run": run}
+    shock = series(run, "shock_position")
+    surface = series(run, "surface_height")
+    out["shock_x_mm"] = shock_at(shock, t_profile) * 1e3 if shock is not None else math.nan
+    top = math.nan
+    if surface is not None:
+        _, _, h0 = profile_at(surface, 0.0)
+        top = float(np.median(h0))
+        t, x, h = profile_at(surface, t_profile)
+        out["profile_time_ms"] = t * 1e3
+        out["layer_top_mm"] = top * 1e3
+        for s in STATIONS:
+            out["h_at_%03dmm_mm" % round(s * 1e3)] = float(np.interp(s, x, h)) * 1e3
+        xs = shock_at(shock, t) if shock is not None else math.nan
+        out["lifting_delay_mm"] = lifting_delay(x, h, xs, top) * 1e3
+        # the lifted plateau: the highest surface between x = 100 mm (past the leading edge,
+        # where the diffracted shock throws the layer up, Fig. 8) and the shock
+        m = (x > 0.10) & (x < xs) & np.isfinite(h)
+        out["max_lift_100mm_to_shock_mm"] = float(np.max(h[m]) - top) * 1e3 if m.any() else math.nan
+        out["profile_x_mm"] = (x * 1e3).tolist()
+        out["profile_h_mm"] = ((h - top) * 1e3).tolist()
+    for band in ("surface", "middle"):
+        b = series(run, "forces_" + band)
+        if b is not None and len(b["tau_s"]):
+            out[band] = band_numbers(b)
+    if math.isfinite(top):
+        out.update(field_numbers(run, top))
+    return out
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run")
+    ap.add_argument("--json", help="write the JSON here as well as to stdout")
+    ap.add_argument("--time", type=float, default=6.0e-4, help="profile time in s (default 0.6 ms)")
+    a = ap.parse_args(argv)
+    result = compare(a.run, a.time)
+    text = json.dumps(result, indent=1, allow_nan=True)
+    if a.json:
+        with open(a.json, "w") as f:
+            f.write(text + "\n")
+    brief = {k: v for k, v in result.items() if not k.startswith("profile_") and k != "fig8d_pressure_above_layer"}
+    print(json.dumps(brief, indent=1, allow_nan=True))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,328 @@
+#!/usr/bin/python3
+"""Tables and figures of docs/results.md from the runs of scripts/reproduce-paper.sh.
+
+Usage: /usr/bin/python3 analysis/paper_results.py OUTROOT [--docs DIR]
+
+OUTROOT holds one folder per run (paper, jittered, clm0, ...: scripts/reproduce-paper.sh
+--list). Each run's numbers come from analysis/paper_compare.py (cached as
+OUTROOT/<run>/paper_compare.json, remade when the run's series are newer). Writes into DIR
+(default docs/results): numbers.md (every number the paper states, ours for the adopted
+columnar layer and for the jittered one, and a verdict), runs.md (wall time and steps of
+each run) and the figures fig5.png, fig6.png, fig7.png, packing.png, fig8d.png,
+fig9_fig13.png, fig10.png, fig12.png. Runs that are missing are left out of the figures
+and marked "not run" in the tables.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import paper_compare  # noqa: E402
+from make_figures import save  # noqa: E402
+
+
+def numbers_of(outroot, name):
+    run = os.path.join(outroot, name)
+    log = os.path.join(run, "run.log")
+    if not os.path.exists(log) or "\ndone:" not in open(log).read():
+        return None
+    cache = os.path.join(run, "paper_compare.json")
+    stamp = os.path.getmtime(os.path.join(run, "series", "surface_height.csv"))
+    if os.path.exists(cache) and os.path.getmtime(cache) >= stamp:
+        with open(cache) as f:
+            return json.load(f)
+    result = paper_compare.compare(run, 6.0e-4)
+    with open(cache, "w") as f:
+        json.dump(result, f)
+    return result
+
+
+def run_cost(outroot, name):
+    """(wall s, steps) from the run's log line 'done: ... N steps ... wall W s'."""
+    log = os.path.join(outroot, name, "run.log")
+    if not os.path.exists(log):
+        return None
+    text = open(log).read()
+    m = re.search(r"^done:.*$", text, re.M)
+    if not m:
+        return None
+    line = m.group(0)
+    steps = re.search(r"(\d+) steps", line)
+    wall = re.search(r"([0-9.]+) s wall|wall ([0-9.]+) s", line)
+    w = float(next(g for g in wall.groups() if g)) if wall else math.nan
+    return w, int(steps.group(1)) if steps else -1, line
+
+
+def get(d, *path):
+    for p in path:
+        if d is None or p not in d:
+            return math.nan
+        d = d[p]
+    return d
+
+
+def fmt(v, digits=3):
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "—"
+    return f"{v:.{digits}g}"
+
+
+def verdict(ours, paper, kind):
+    """kind: 'rel' (within 20 % of paper), 'max' (ours below paper), 'sign' (same sign)."""
+    if ours is None or not math.isfinite(ours):
+        return "not run"
+    if kind == "rel":
+        dev = (ours - paper) / abs(paper)
+        return ("within 20 %" if abs(dev) <= 0.2 else "off") + f" ({dev:+.0%})"
+    if kind == "max":
+        return "holds" if ours < paper else "off"
+    if kind == "sign":
+        return "holds" if ours * paper > 0 else "off (sign)"
+    return ""
+
+
+def table(runs):
+    a, j = runs.get("paper"), runs.get("jittered")
+    rows = []
+
+    def row(what, paper_text, paper_value, kind, fn, unit=""):
+        oa, oj = fn(a), fn(j)
+        rows.append((what, paper_text, fmt(oa) + unit, fmt(oj) + unit, verdict(oa, paper_value, kind),
+                     verdict(oj, paper_value, kind)))
+
+    row("shock position at 0.6 ms", "290 mm", 290.0, "rel", lambda r: get(r, "shock_x_mm"), " mm")
+    row("lifting delay distance, h = 0.10 mN s/m, C_LM = 1", "< 100 mm (shorter than at h > 0.3)", 100.0, "max",
+        lambda r: get(r, "lifting_delay_mm"), " mm")
+    row("lifting delay distance, h = 0.30 mN s/m (C_LM = 0)", "≈ 100 mm", 100.0, "rel",
+        lambda r: get(runs.get("h0p30"), "lifting_delay_mm") if r is a else math.nan, " mm")
+    row("lifting delay distance, h = 0.50 mN s/m (C_LM = 0)", "≈ 100 mm", 100.0, "rel",
+        lambda r: get(runs.get("h0p50"), "lifting_delay_mm") if r is a else math.nan, " mm")
+    row("lift above the layer, h = 0.30 mN s/m (max, 100 mm to shock)", "≈ 1 mm", 1.0, "rel",
+        lambda r: get(runs.get("h0p30"), "max_lift_100mm_to_shock_mm") if r is a else math.nan, " mm")
+    row("h(250 mm), C_LM = 1.0 minus C_LM = 0", "≈ 1.0 mm", 1.0, "rel",
+        lambda r: (get(r, "h_at_250mm_mm") - get(runs.get("clm0" if r is a else "jittered_clm0"), "h_at_250mm_mm")),
+        " mm")
+    for band, what, paper_text, value, key in (
+            ("surface", "surface band: contact peak (0.01 ms mean)", "+80 µN", 80.0, "contact_up_10us_uN"),
+            ("surface", "surface band: time of the contact peak", "0.01 ms", 10.0, "contact_up_10us_tau_us"),
+            ("surface", "surface band: pressure peak (1 µs bins)", "−10 µN", -10.0, "pressure_down_1us_uN"),
+            ("surface", "surface band: pressure peak (0.01 ms mean)", "−10 µN", -10.0, "pressure_down_10us_uN"),
+            ("surface", "surface band: drag peak (1 µs bins)", "−20 µN", -20.0, "drag_down_1us_uN"),
+            ("surface", "surface band: drag peak (0.01 ms mean)", "−20 µN", -20.0, "drag_down_10us_uN"),
+            ("surface", "surface band: drag, mean 0.1–0.3 ms", "−2 µN", -2.0, "drag_y_late_uN"),
+            ("surface", "surface band: Magnus peak (0.01 ms mean)", "+8 µN", 8.0, "magnus_up_10us_uN"),
+            ("middle", "middle band: pressure peak (1 µs bins)", "−18 µN", -18.0, "pressure_down_1us_uN"),
+            ("middle", "middle band: pressure peak (0.01 ms mean)", "−18 µN", -18.0, "pressure_down_10us_uN"),
+            ("middle", "middle band: contact peak (0.01 ms mean)", "+47 µN", 47.0, "contact_up_10us_uN"),
+    ):
+        unit = " µs" if key.endswith("tau_us") else " µN"
+        row(what, paper_text, value, "rel", lambda r, b=band, k=key: get(r, b, k), unit)
+    row("middle band: contact peak earlier than the surface band's", "yes (0 < t < 0.05 ms)", 0.0, "max",
+        lambda r: get(r, "middle", "contact_up_10us_tau_us") - get(r, "surface", "contact_up_10us_tau_us"), " µs")
+    row("surface band: Magnus minus contact, mean 0.1–0.2 ms", "> 0 (Magnus dominant)", 1.0, "sign",
+        lambda r: get(r, "surface", "magnus_y_late_uN") - get(r, "surface", "contact_y_late_uN"), " µN")
+    row("gas / particle rotation at 0.1 ms (surface band)", "≈ 50", 50.0, "rel",
+        lambda r: get(r, "surface", "gas_over_particle_rotation_0p1ms"))
+    row("particle rotation (paper sign), mean 0.05–0.3 ms", "> 0", 1.0, "sign",
+        lambda r: get(r, "surface", "particle_rotation_paper_mean_0p05_0p3ms"), " rad/s")
+    row("gas rotation above the layer at 0.5 ms (paper sign)", "> 0 (Fig. 13b)", 1.0, "sign",
+        lambda r: get(r, "gas_rotation_paper_above_layer_mean"), " rad/s")
+    row("shock inside the layer (y = −1 mm) behind the one above it (y = 5 mm), 0.5 ms", "> 0 (oblique, Fig. 9a)",
+        1.0, "sign", lambda r: get(r, "shock_x_y_p5mm_mm") - get(r, "shock_x_y_m1p0mm_mm"), " mm")
+    row("shock at y = 20 mm ahead of the one at y = 5 mm, 0.5 ms", "curved above the layer (Fig. 9a)", 1.0, "sign",
+        lambda r: get(r, "shock_x_y_p20mm_mm") - get(r, "shock_x_y_p5mm_mm"), " mm")
+    lines = ["| quantity | paper | ours, columnar (adopted) | ours, jittered | verdict, columnar | verdict, jittered |",
+             "|---|---|---|---|---|---|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    return "\n".join(lines) + "\n"
+
+
+def heights_table(runs, names):
+    lines = ["| run | shock (mm) | delay (mm) | " + " | ".join(f"h({s} mm)" for s in (50, 100, 150, 200, 250)) +
+             " | max lift (mm) |", "|---" * 9 + "|"]
+    for n in names:
+        r = runs.get(n)
+        if r is None:
+            lines.append(f"| {n} | not run |" + " |" * 7)
+            continue
+        hs = [fmt(get(r, "h_at_%03dmm_mm" % s) - get(r, "layer_top_mm")) for s in (50, 100, 150, 200, 250)]
+        lines.append(f"| {n} | {fmt(get(r, 'shock_x_mm'), 4)} | {fmt(get(r, 'lifting_delay_mm'))} | " +
+                     " | ".join(hs) + f" | {fmt(get(r, 'max_lift_100mm_to_shock_mm'))} |")
+    return "\n".join(lines) + "\n"
+
+
+def profile_panel(ax, runs, names, labels, title):
+    for n, lab in zip(names, labels):
+        r = runs.get(n)
+        if r is None or "profile_x_mm" not in r:
+            continue
+        ax.plot(r["profile_x_mm"], r["profile_h_mm"], label=lab, lw=1.2)
+    ax.set_xlim(0, 300)
+    ax.set_ylim(-0.5, 5)
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("surface height above the layer (mm)")
+    ax.axvline(290, color="0.6", lw=0.8, ls=":")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+
+def band_series(outroot, name, band):
+    return paper_compare.series(os.path.join(outroot, name), "forces_" + band)
+
+
+def fig10(outroot, runs, docs):
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
+    for col, name in enumerate(("paper", "jittered")):
+        for row, band in enumerate(("surface", "middle")):
+            ax = axes[row][col]
+            b = band_series(outroot, name, band) if runs.get(name) else None
+            if b is None:
+                ax.set_title(f"{name}: not run")
+                continue
+            tau, n = b["tau_s"], b["samples_1"]
+            for column, lab, c in (("contact_window_y_N", "contact", "k"), ("drag_y_N", "drag", "tab:blue"),
+                                   ("pressure_y_N", "pressure", "tab:green"), ("magnus_y_N", "Magnus", "tab:red")):
+                t, v = paper_compare.windowed(tau, n, b[column], paper_compare.WINDOW)
+                ax.plot(t * 1e3, v * 1e6, c, label=lab + " (0.01 ms mean)")
+                if column != "contact_window_y_N":
+                    ax.plot(tau * 1e3, b[column] * 1e6, c, lw=0.4, alpha=0.5)
+            ax.axhline(0, color="0.5", lw=0.5)
+            ax.set_xlim(0, 0.3)
+            ax.set_ylim(-100, 200)
+            ax.set_title(f"{'columnar (adopted)' if name == 'paper' else 'jittered'}: {band} band, vertical forces",
+                         fontsize=9)
+            ax.set_ylabel("force per parcel (µN)")
+            ax.grid(alpha=0.3)
+            if row == 1:
+                ax.set_xlabel("time since shock arrival (ms)")
+    axes[0][0].legend(fontsize=7)
+    save(fig, docs, "fig10.png")
+
+
+def fig12(outroot, runs, docs):
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.6))
+    for name, ls in (("paper", "-"), ("jittered", "--")):
+        if not runs.get(name):
+            continue
+        b = band_series(outroot, name, "surface")
+        tau, n = b["tau_s"], b["samples_1"]
+        for ax, column, lab in zip(axes, ("magnus_y_N", "particle_rotation_rad_per_s", "gas_rotation_rad_per_s"),
+                                   ("Magnus force (µN)", "particle rotation, paper sign (rad/s)",
+                                    "gas rotation, paper sign (rad/s)")):
+            t, v = paper_compare.windowed(tau, n, b[column], paper_compare.WINDOW)
+            scale = 1e6 if column == "magnus_y_N" else -1.0
+            ax.plot(t * 1e3, v * scale, ls, label=name)
+            ax.set_ylabel(lab)
+            ax.set_xlabel("time since shock arrival (ms)")
+            ax.set_xlim(0, 0.3)
+            ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    save(fig, docs, "fig12.png")
+
+
+def fig9_13(outroot, runs, docs):
+    if not runs.get("paper"):
+        return
+    g = paper_compare.gas_at(os.path.join(outroot, "paper"), 5.0e-4)
+    fig, axes = plt.subplots(3, 1, figsize=(10, 8))
+    xs = g["x"] * 1e3
+    ys = g["y"] * 1e3
+    m = (xs > 150) & (xs < 260)
+    n = ys < 12
+    for ax, field, lab, cmap, lim in ((axes[0], g["p"] / 1e3, "pressure (kPa)", "viridis", None),
+                                      (axes[1], g["u"], "u (m/s)", "viridis", None),
+                                      (axes[2], -0.5 * g["vorticity"], "gas rotation, paper sign (1/s)", "RdBu_r",
+                                       5e4)):
+        f = field[np.ix_(n, m)]
+        kw = dict(vmin=-lim, vmax=lim) if lim else {}
+        im = ax.pcolormesh(xs[m], ys[n], f, cmap=cmap, shading="nearest", **kw)
+        ax.contour(xs[m], ys[n], g["alpha_p"][np.ix_(n, m)], levels=[1e-4], colors="w", linewidths=0.6)
+        fig.colorbar(im, ax=ax, label=lab)
+        ax.set_ylabel("y (mm)")
+    axes[0].set_title(f"adopted run at t = {g['t'] * 1e3:.2f} ms (white: α_p = 1e-4)", fontsize=9)
+    axes[2].set_xlabel("x (mm)")
+    save(fig, docs, "fig9_fig13.png")
+
+
+def fig8d(runs, docs):
+    r = runs.get("paper")
+    if not r or "fig8d_pressure_above_layer" not in r:
+        return
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    rows = r["fig8d_pressure_above_layer"]
+    t = [q["t_ms"] for q in rows]
+    for key, lab in (("p_10mm_kPa", "x = 10 mm"), ("p_20mm_kPa", "x = 20 mm"), ("p_40mm_kPa", "x = 40 mm")):
+        ax.plot(t, [q[key] for q in rows], "o-", label=lab)
+    ax.set_xlabel("t (ms)")
+    ax.set_ylabel("p 0.5 mm above the layer (kPa)")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    save(fig, docs, "fig8d.png")
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("outroot")
+    ap.add_argument("--docs", default=os.path.join(os.path.dirname(__file__), "..", "docs", "results"))
+    a = ap.parse_args(argv)
+    os.makedirs(a.docs, exist_ok=True)
+    names = sorted(d for d in os.listdir(a.outroot) if os.path.isdir(os.path.join(a.outroot, d)))
+    runs = {n: numbers_of(a.outroot, n) for n in names}
+    runs = {n: r for n, r in runs.items() if r is not None}
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    profile_panel(axes[0], runs, ["kn500k", "clm0"], ["k_n = 500 kN/m", "k_n = 50 kN/m"], "Fig. 5a (C_LM = 0)")
+    profile_panel(axes[1], runs, ["clm0", "kt1000", "kt10000"], ["k_t/k_n = 0.002", "0.02", "0.2"],
+                  "Fig. 5b (C_LM = 0)")
+    profile_panel(axes[2], runs, ["clm0", "h0p30", "h0p50"], ["h = 0.10 mN s/m", "0.30", "0.50"],
+                  "Fig. 5c (C_LM = 0)")
+    save(fig, a.docs, "fig5.png")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    profile_panel(ax, runs, ["clm0", "clm0p1", "clm0p5", "paper"], ["C_LM = 0", "0.1", "0.5", "1.0"], "Fig. 6")
+    save(fig, a.docs, "fig6.png")
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    profile_panel(axes[0], runs, ["grid1000", "grid500", "paper"], ["Δx = 1000 µm", "500 µm", "250 µm"],
+                  "Fig. 7a (parcels of 100 µm)")
+    profile_panel(axes[1], runs, ["grid500", "parcel200"], ["parcels of 100 µm", "200 µm"], "Fig. 7b (Δx = 500 µm)")
+    save(fig, a.docs, "fig7.png")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    profile_panel(ax, runs, ["jittered", "hexagonal", "paper"], ["jittered lattice (before)", "hexagonal",
+                                                                 "columnar (adopted)"], "layer structure, C_LM = 1")
+    save(fig, a.docs, "packing.png")
+    fig10(a.outroot, runs, a.docs)
+    fig12(a.outroot, runs, a.docs)
+    fig9_13(a.outroot, runs, a.docs)
+    fig8d(runs, a.docs)
+
+    with open(os.path.join(a.docs, "numbers.md"), "w") as f:
+        f.write("<!-- written by analysis/paper_results.py; do not edit -->\n")
+        f.write(table(runs))
+        f.write("\nSurface height above the undisturbed top at 0.6 ms (mm):\n\n")
+        f.write(heights_table(runs, [r for r in ("paper", "jittered", "hexagonal", "clm0", "clm0p1", "clm0p5",
+                                                 "h0p30", "h0p50", "kt1000", "kt10000", "kn500k", "grid1000",
+                                                 "grid500", "parcel200") ] + sorted(set(runs) - {
+            "paper", "jittered", "hexagonal", "clm0", "clm0p1", "clm0p5", "h0p30", "h0p50", "kt1000", "kt10000",
+            "kn500k", "grid1000", "grid500", "parcel200"})))
+    print("wrote", os.path.join(a.docs, "numbers.md"))
+    with open(os.path.join(a.docs, "runs.md"), "w") as f:
+        f.write("<!-- written by analysis/paper_results.py; do not edit -->\n| run | wall (s) | steps | log |\n"
+                "|---|---|---|---|\n")
+        for n in names:
+            c = run_cost(a.outroot, n)
+            if c:
+                f.write(f"| {n} | {c[0]:.0f} | {c[1]} | `{c[2]}` |\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
