@@ -3,6 +3,11 @@
 
 Usage: /usr/bin/python3 analysis/paper_compare.py RUN_DIR [--json OUT] [--time T]
 
+Surface heights: h(x) at the stations, the lifting delay (the rule of
+insitu/lifting_delay.cpp: the distance from the shock back to where h first exceeds the
+undisturbed top by 0.1 mm) and the plateau are taken from the running median of h over
+5 mm of x (20 columns of the paper grid); the delay of the raw columns is given too.
+
 RUN_DIR is an output folder of `dustlift run` (cases/paper/vertical_shock.toml or a study
 run of it). Reads its series (series/*.csv) and gas VTK files (vtk/gas_*.vtr, through
 Debian's python3-vtk9) and prints one JSON object; docs/results.md explains each entry and
@@ -30,6 +35,7 @@ import sys
 
 import numpy as np
 
+SMOOTHING = 5.0e-3           # m: width of the running median of h(x) (20 columns of 250 um)
 LIFT_THRESHOLD = 1.0e-4      # m above the undisturbed top that counts as lifted (sweep default)
 STATIONS = [0.050, 0.100, 0.150, 0.200, 0.250]   # m: the h(x) read-outs of docs/results.md
 WINDOW = 1.0e-5              # s: the paper's 0.01 ms averaging window
@@ -60,6 +66,22 @@ def profile_at(surface, t):
     t_near = times[np.argmin(np.abs(times - t))]
     keep = surface["time_s"] == t_near
     return float(t_near), surface["x_m"][keep], surface["height_m"][keep]
+
+
+def running_median(x, h, width=SMOOTHING):
+    """Median of h over |x' - x| <= width / 2 at each x (NaN columns left out). The
+    surface height of a dilute cloud jumps by cells between neighbouring columns (a lone
+    parcel puts its column's surface at a cell's top face, docs/output.md); the paper's
+    curves are read as the trend of those columns."""
+    out = np.full_like(h, math.nan)
+    lo = np.searchsorted(x, x - 0.5 * width, side="left")
+    hi = np.searchsorted(x, x + 0.5 * width, side="right")
+    for k in range(len(x)):
+        w = h[lo[k]:hi[k]]
+        w = w[np.isfinite(w)]
+        if len(w):
+            out[k] = np.median(w)
+    return out
 
 
 def lifting_delay(x, h, shock_x, top, threshold=LIFT_THRESHOLD):
@@ -211,9 +233,15 @@ def field_numbers(run, top):
         j = int(np.argmin(np.abs(h["y"] - (top + 0.5e-3))))
         def p_at(x):
             return float(np.interp(x, h["x"], h["p"][j]))
+        m = (h["x"] >= 0.0) & (h["x"] <= 0.08)
         fig8.append({"t_ms": h["t"] * 1e3, "p_10mm_kPa": p_at(0.010) / 1e3, "p_20mm_kPa": p_at(0.020) / 1e3,
-                     "p_40mm_kPa": p_at(0.040) / 1e3})
+                     "p_40mm_kPa": p_at(0.040) / 1e3, "x_mm": (h["x"][m] * 1e3).tolist(),
+                     "p_kPa": (h["p"][j][m] / 1e3).tolist()})
     out["fig8d_pressure_above_layer"] = fig8
+    # Fig. 8d: p rising over 10-20 mm and falling over 20-40 mm (a maximum near 20 mm), at
+    # the outputs after t = 0
+    out["fig8d_peak_near_20mm_at_ms"] = [q["t_ms"] for q in fig8[1:]
+                                          if q["p_20mm_kPa"] > q["p_10mm_kPa"] and q["p_20mm_kPa"] > q["p_40mm_kPa"]]
     return out
 
 
@@ -226,19 +254,23 @@ def compare(run, t_profile):
     if surface is not None:
         _, _, h0 = profile_at(surface, 0.0)
         top = float(np.median(h0))
-        t, x, h = profile_at(surface, t_profile)
+        t, x, h_raw = profile_at(surface, t_profile)
+        h = running_median(x, h_raw)
         out["profile_time_ms"] = t * 1e3
         out["layer_top_mm"] = top * 1e3
         for s in STATIONS:
-            out["h_at_%03dmm_mm" % round(s * 1e3)] = float(np.interp(s, x, h)) * 1e3
+            inside = s <= x[-1] - 0.5 * SMOOTHING
+            out["h_at_%03dmm_mm" % round(s * 1e3)] = float(np.interp(s, x, h)) * 1e3 if inside else math.nan
         xs = shock_at(shock, t) if shock is not None else math.nan
         out["lifting_delay_mm"] = lifting_delay(x, h, xs, top) * 1e3
-        # the lifted plateau: the highest surface between x = 100 mm (past the leading edge,
+        # the lifted height: the highest surface between x = 50 mm (past the leading edge,
         # where the diffracted shock throws the layer up, Fig. 8) and the shock
-        m = (x > 0.10) & (x < xs) & np.isfinite(h)
-        out["max_lift_100mm_to_shock_mm"] = float(np.max(h[m]) - top) * 1e3 if m.any() else math.nan
+        m = (x > 0.05) & (x < xs) & np.isfinite(h)
+        out["max_lift_50mm_to_shock_mm"] = float(np.max(h[m]) - top) * 1e3 if m.any() else math.nan
         out["profile_x_mm"] = (x * 1e3).tolist()
         out["profile_h_mm"] = ((h - top) * 1e3).tolist()
+        out["profile_h_raw_mm"] = ((h_raw - top) * 1e3).tolist()
+        out["lifting_delay_raw_mm"] = lifting_delay(x, h_raw, xs, top) * 1e3
     for band in ("surface", "middle"):
         b = series(run, "forces_" + band)
         if b is not None and len(b["tau_s"]):

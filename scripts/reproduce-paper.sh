@@ -43,7 +43,13 @@ runs=(
   "jittered|paper|particles.layer.arrangement=jittered_lattice"
   "clm0p1|paper|coupling.magnus_coefficient=0.1"
   "hexagonal|paper|particles.layer.arrangement=hexagonal"
+  "proxy_paper|proxy|"
+  "proxy_jittered_clm1|proxy|particles.layer.arrangement=jittered_lattice"
+  "proxy_hexagonal|proxy|particles.layer.arrangement=hexagonal"
+  "proxy_nocoulomb|proxy|particles.contact.coulomb=false"
+  "proxy_cap03|proxy|coupling.volume_fraction_cap=0.3"
   "proxy_clm0|proxy|coupling.magnus_coefficient=0"
+  "proxy_clm10|proxy|coupling.magnus_coefficient=10"
   "proxy_kt10|proxy|coupling.magnus_coefficient=0 particles.contact.k_t=10"
   "proxy_kt1000|proxy|coupling.magnus_coefficient=0 particles.contact.k_t=1000"
   "proxy_kt10000|proxy|coupling.magnus_coefficient=0 particles.contact.k_t=10000"
@@ -88,4 +94,4 @@ done
 start=$SECONDS
 printf '%s\n' "${selected[@]}" | tr '|' ' ' | xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _
 echo "runs: $((SECONDS - start)) s"
-/usr/bin/python3 "$root/analysis/paper_results.py" "$outroot" --docs "$root/docs/results"
+/usr/bin/python3 "$root/analysis/paper_results.py" "$outroot" --docs "$root/docs/results" --results-md "$root/docs/results.md"
