@@ -309,7 +309,10 @@ def fig9_13(outroot, runs, docs):
     fig, axes = plt.subplots(3, 1, figsize=(10, 8))
     xs = g["x"] * 1e3
     ys = g["y"] * 1e3
-    m = (xs > 150) & (xs < 260)
+    # 90 mm behind the shock (at y = 5 mm) to 20 mm ahead of it: x = 150-260 mm at 0.5 ms
+    p0 = float(np.median(g["p"][:, -5]))
+    x_shock = paper_compare.shock_row(g, int(np.argmin(np.abs(g["y"] - 5.0e-3))), p0) * 1e3
+    m = (xs > x_shock - 90.0) & (xs < x_shock + 20.0)
     n = ys < 12
     for ax, field, lab, cmap, lim in ((axes[0], g["p"] / 1e3, "pressure (kPa)", "viridis", None),
                                       (axes[1], g["u"], "u (m/s)", "viridis", None),
