@@ -26,29 +26,21 @@ for 10 us windows (the sample-weighted mean over consecutive bins), the second b
 paper's stated averaging.
 """
 import argparse
-import csv
-import glob
 import json
 import math
 import os
+import re
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_sweep import numeric  # noqa: E402  (CSV with a header -> dict of numpy columns)
 
 SMOOTHING = 5.0e-3           # m: width of the running median of h(x) (20 columns of 250 um)
 LIFT_THRESHOLD = 1.0e-4      # m above the undisturbed top that counts as lifted (sweep default)
 STATIONS = [0.050, 0.100, 0.150, 0.200, 0.250]   # m: the h(x) read-outs of docs/results.md
 WINDOW = 1.0e-5              # s: the paper's 0.01 ms averaging window
-
-
-def numeric(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    header, body = rows[0], rows[1:]
-    out = {}
-    for k, name in enumerate(header):
-        out[name] = np.array([float(r[k]) if r[k] not in ("", "nan", "NaN") else math.nan for r in body])
-    return out
 
 
 def series(run, name):
@@ -138,11 +130,14 @@ def band_numbers(band):
     """Peaks and means of one band's force series, in uN and us."""
     tau, n = band["tau_s"], band["samples_1"]
     out = {}
-    for name, column, sign in (("contact_up", "contact_window_y_N", +1), ("drag_down", "drag_y_N", -1),
-                               ("pressure_down", "pressure_y_N", -1), ("magnus_up", "magnus_y_N", +1)):
+    # (name, 1 us column, 0.01 ms column, sign): the contact force has its own 0.01 ms
+    # window column (written by the band filter), the others are averaged here.
+    for name, column, window_column, sign in (
+            ("contact_up", "contact_y_N", "contact_window_y_N", +1), ("drag_down", "drag_y_N", "drag_y_N", -1),
+            ("pressure_down", "pressure_y_N", "pressure_y_N", -1), ("magnus_up", "magnus_y_N", "magnus_y_N", +1)):
         v, t = extreme(tau, band[column], sign)
         out[name + "_1us_uN"], out[name + "_1us_tau_us"] = v * 1e6, t * 1e6
-        wt, wv = windowed(tau, n, band[column], WINDOW)
+        wt, wv = windowed(tau, n, band[window_column], WINDOW)
         v, t = extreme(wt, wv, sign)
         out[name + "_10us_uN"], out[name + "_10us_tau_us"] = v * 1e6, t * 1e6
     out["drag_y_late_uN"] = mean_between(tau, n, band["drag_y_N"], 1.0e-4, 3.0e-4) * 1e6
@@ -182,15 +177,21 @@ def read_vtr(path):
             "u": field("velocity", 0), "vorticity": field("vorticity"), "alpha_p": field("alpha_p")}
 
 
+def gas_files(run):
+    """(time, path) of every gas output, from the run's gas.pvd collection."""
+    pvd = os.path.join(run, "gas.pvd")
+    if not os.path.exists(pvd):
+        return []
+    entries = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', open(pvd).read())
+    return [(float(t), os.path.join(run, f)) for t, f in entries]
+
+
 def gas_at(run, t):
-    files = sorted(glob.glob(os.path.join(run, "vtk", "gas_*.vtr")))
-    best = None
-    for f in files:
-        # file times are in the .pvd; reading each header is cheap enough for 10 files
-        g = read_vtr(f)
-        if best is None or abs(g["t"] - t) < abs(best["t"] - t):
-            best = g
-    return best
+    """The gas output nearest to time t (None without outputs)."""
+    files = gas_files(run)
+    if not files:
+        return None
+    return read_vtr(min(files, key=lambda tf: abs(tf[0] - t))[1])
 
 
 def shock_row(g, j, p0):
@@ -228,7 +229,7 @@ def field_numbers(run, top):
     out["gas_rotation_paper_above_layer_positive_share"] = float(np.mean(w > 0))
     # Fig. 8d: pressure just above the layer near its leading edge, at every output time
     fig8 = []
-    for f in sorted(glob.glob(os.path.join(run, "vtk", "gas_*.vtr"))):
+    for _, f in gas_files(run):
         h = read_vtr(f)
         j = int(np.argmin(np.abs(h["y"] - (top + 0.5e-3))))
         def p_at(x):
