@@ -77,4 +77,11 @@ struct NearLayerOptions {
 /// centre lies in the window, at each output time.
 std::unique_ptr<Observer> make_near_layer_observer(NearLayerOptions options);
 
+/// ParaView Catalyst (docs/catalyst.md): runs the scene's [insitu.catalyst] scripts on the
+/// channels "gas" and "parcels" at its cadence and always on the last step. Loads the adaptor
+/// module here; throws SceneError (exit 2, before anything is written) when this build has no
+/// Catalyst, the module is missing, or there is neither a display nor Xvfb.
+std::unique_ptr<Observer> make_catalyst_observer(const Scene& scene, const std::string& output_dir,
+                                                 ParcelArraysOf parcels_of);
+
 }  // namespace dustlift

@@ -63,8 +63,12 @@ BandParcelsView band_arrays_of(const StateView& v) {
 }  // namespace
 
 std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
-                                                             const std::string&) {
+                                                             const std::string& output_dir) {
   std::vector<std::unique_ptr<Observer>> observers;
+  // Effects-off rule: without the section no Catalyst code is loaded or run.
+  if (scene.insitu.catalyst.enabled) {
+    observers.push_back(make_catalyst_observer(scene, output_dir, scene.particles.enabled ? parcel_arrays_of : nullptr));
+  }
   const OutputConfig& out = scene.output;
   if (out.vtk) observers.push_back(make_vtk_gas_writer());
 

@@ -2,6 +2,8 @@
 // appended data as empty with newer libexpat (see /work/shared/toolchain-notes.md).
 #include "insitu/vtk_writers.hpp"
 
+#include "insitu/vtk_datasets.hpp"
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
@@ -27,30 +29,6 @@
 namespace dustlift {
 namespace {
 
-vtkSmartPointer<vtkDoubleArray> scalar_array(const char* name, std::span<const double> values) {
-  auto a = vtkSmartPointer<vtkDoubleArray>::New();
-  a->SetName(name);
-  a->SetNumberOfComponents(1);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-  for (std::size_t k = 0; k < values.size(); ++k) a->SetValue(static_cast<vtkIdType>(k), values[k]);
-  return a;
-}
-
-vtkSmartPointer<vtkDoubleArray> vector_array(const char* name, std::span<const double> x,
-                                             std::span<const double> y) {
-  auto a = vtkSmartPointer<vtkDoubleArray>::New();
-  a->SetName(name);
-  a->SetNumberOfComponents(3);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(x.size()));
-  double* out = a->GetPointer(0);
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    out[3 * k] = x[k];
-    out[3 * k + 1] = y[k];
-    out[3 * k + 2] = 0.0;
-  }
-  return a;
-}
-
 void configure_binary_zlib(vtkXMLWriter* writer, const std::string& path) {
   writer->SetFileName(path.c_str());
   writer->SetDataModeToBinary();  // inline binary (base64) inside the XML
@@ -59,18 +37,6 @@ void configure_binary_zlib(vtkXMLWriter* writer, const std::string& path) {
   // Fastest zlib level: deflate + base64 dominate the output time (~1.5 s for 360k cells
   // of 8 arrays on a loaded 2-core machine); level 5 was ~25 % slower for ~0.1 % less disk.
   writer->SetCompressionLevel(1);
-}
-
-void add_field_data(vtkDataObject* data, const VtkFileInfo& info) {
-  vtkFieldData* fd = data->GetFieldData();
-  const double time[1] = {info.time};
-  fd->AddArray(scalar_array("TimeValue", time));
-  for (const auto& [name, text] : {std::pair{"code_version", &info.code_version}, std::pair{"command_line", &info.command_line}}) {
-    vtkNew<vtkStringArray> a;
-    a->SetName(name);
-    a->InsertNextValue(*text);
-    fd->AddArray(a);
-  }
 }
 
 void prepare_folder(const std::string& path) {
@@ -83,22 +49,8 @@ void prepare_folder(const std::string& path) {
 void write_gas_vtr(const GasCellArrays& gas, const std::string& path, const VtkFileInfo& info) {
   gas.check_sizes();
   if (gas.cells() == 0) throw std::invalid_argument("write_gas_vtr: empty grid");
-  vtkNew<vtkRectilinearGrid> grid;
-  grid->SetDimensions(static_cast<int>(gas.x_nodes.size()), static_cast<int>(gas.y_nodes.size()),
-                      1);
-  const double z0[1] = {0.0};
-  grid->SetXCoordinates(scalar_array("x", gas.x_nodes));
-  grid->SetYCoordinates(scalar_array("y", gas.y_nodes));
-  grid->SetZCoordinates(scalar_array("z", z0));
-  vtkCellData* cd = grid->GetCellData();
-  cd->AddArray(scalar_array("density", gas.density));
-  cd->AddArray(vector_array("velocity", gas.velocity_x, gas.velocity_y));
-  cd->AddArray(scalar_array("pressure", gas.pressure));
-  cd->AddArray(scalar_array("temperature", gas.temperature));
-  cd->AddArray(scalar_array("mach", gas.mach));
-  cd->AddArray(scalar_array("alpha_p", gas.alpha_p));
-  cd->AddArray(scalar_array("vorticity", gas.vorticity));
-  cd->SetActiveScalars("pressure");
+  vtkSmartPointer<vtkRectilinearGrid> grid = make_gas_grid(gas);
+  set_gas_cell_data(grid, gas);
   add_field_data(grid, info);
 
   prepare_folder(path);
@@ -110,48 +62,7 @@ void write_gas_vtr(const GasCellArrays& gas, const std::string& path, const VtkF
 
 void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path, const VtkFileInfo& info) {
   parcels.check_sizes();
-  const auto n = static_cast<vtkIdType>(parcels.count);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
-  for (vtkIdType k = 0; k < n; ++k)
-    points->SetPoint(k, parcels.position.x[static_cast<std::size_t>(k)],
-                     parcels.position.y[static_cast<std::size_t>(k)], 0.0);
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfTuples(n + 1);
-  connectivity->SetNumberOfTuples(n);
-  for (vtkIdType k = 0; k <= n; ++k) offsets->SetValue(k, k);
-  for (vtkIdType k = 0; k < n; ++k) connectivity->SetValue(k, k);
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(offsets, connectivity);
-
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(points);
-  poly->SetVerts(vertices);
-  vtkPointData* pd = poly->GetPointData();
-  auto add2 = [pd](const char* name, const Vec2Columns& v) {
-    if (v.present()) pd->AddArray(vector_array(name, v.x, v.y));
-  };
-  auto add1 = [pd](const char* name, std::span<const double> s) {
-    if (!s.empty()) pd->AddArray(scalar_array(name, s));
-  };
-  add2("velocity", parcels.velocity);
-  add1("angular_velocity", parcels.angular_velocity);
-  add1("temperature", parcels.temperature);
-  add1("diameter", parcels.diameter);
-  add2("initial_position", parcels.initial_position);
-  add2("force_contact", parcels.force_contact);
-  add2("force_drag", parcels.force_drag);
-  add2("force_magnus", parcels.force_magnus);
-  add2("force_pressure", parcels.force_pressure);
-  for (const auto& c : parcels.extra) add1(c.name.c_str(), c.values);
-  if (!parcels.id.empty()) {
-    vtkNew<vtkIntArray> id;
-    id->SetName("id");
-    id->SetNumberOfTuples(n);
-    for (vtkIdType k = 0; k < n; ++k) id->SetValue(k, parcels.id[static_cast<std::size_t>(k)]);
-    pd->AddArray(id);
-  }
+  vtkSmartPointer<vtkPolyData> poly = make_parcel_polydata(parcels);
   add_field_data(poly, info);
 
   prepare_folder(path);

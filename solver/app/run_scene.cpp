@@ -112,6 +112,7 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     log.line("  " + describe_layer(scene.particles));
     if (layer_settles(scene.particles.layer)) log.line("  " + describe_bed(*p, scene.particles.layer));
   }
+  sim.set_log([&](const std::string& s) { log.line(s); });
   sim.set_progress_callback([&](const Progress& p) {
     log.line(fmt::format("t = {:.4e} s ({:5.1f}%)  step {}  dt = {:.3e} s  wall {}  ETA {}", p.time,
                          100.0 * p.time / p.end_time, p.step, p.dt, format_duration(p.wall_seconds),

@@ -20,6 +20,7 @@ void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& ther
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary);
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem, const GridConfig& grid);
+void parse_insitu(TableReader t, InsituConfig& insitu);
 
 /// The smallest cell width of the grid along either axis, m.
 double min_cell_width(const GridConfig& grid);

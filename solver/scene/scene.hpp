@@ -66,6 +66,20 @@ struct OutputConfig {
   double probe_interval = 0.0;  ///< s of simulated time between probe samples; 0: every step
 };
 
+/// ParaView Catalyst in situ (docs/catalyst.md): Python pipelines run on the live state.
+struct CatalystConfig {
+  bool enabled = false;              ///< the scene has an [insitu.catalyst] section
+  std::vector<std::string> scripts;  ///< absolute paths of the Catalyst Python scripts (v1 or v2)
+  long long interval_steps = 1;      ///< deliver every this many steps (interval = 0)
+  double interval = 0.0;             ///< s of simulated time between deliveries; 0: by steps
+  bool live = false;                 ///< also a pipeline that connects to ParaView Live
+  std::string live_url = "localhost:22222";
+};
+
+struct InsituConfig {
+  CatalystConfig catalyst;
+};
+
 struct GridConfig {
   AxisSpec x, y;
 };
@@ -79,6 +93,7 @@ struct Scene {
   DemConfig particles;
   CouplingConfig coupling;  ///< used when particles are enabled
   OutputConfig output;
+  InsituConfig insitu;
   std::string resolved_toml;  ///< the whole scene with every default filled in
   /// The text and --set overrides it was parsed from: a checkpoint stores them so that a
   /// restart re-parses exactly the same scene (docs/reliability.md).

@@ -81,7 +81,7 @@ Scene parse_scene(const std::string& text, const std::string& name,
   scene.overrides = overrides;
   toml::table resolved;
   TableReader root(&doc, "", name, &resolved, &context);
-  root.expect_keys({"run", "grid", "gas", "boundary", "initial", "particles", "coupling", "output"});
+  root.expect_keys({"run", "grid", "gas", "boundary", "initial", "particles", "coupling", "output", "insitu"});
   using namespace scene_detail;
   parse_run(root.table("run"), scene.run);
   parse_grid(root.table("grid", true), scene.grid);
@@ -91,6 +91,7 @@ Scene parse_scene(const std::string& text, const std::string& name,
   parse_particles(root.table("particles"), scene.particles, scene.grid, scene.gas.boundary);
   parse_coupling(root.table("coupling"), scene.coupling, scene.particles, scene.grid);
   parse_output(root.table("output"), scene.output, scene.run, scene.particles, scene.grid);
+  parse_insitu(root.table("insitu"), scene.insitu);
   root.finish();
   prune_empty_tables(resolved);
 

@@ -274,6 +274,25 @@ std::string TableReader::path(std::string_view key) {
   return resolved;
 }
 
+std::vector<std::string> TableReader::existing_file_list(std::string_view key, std::vector<std::string> fallback) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> v = string_list(key, std::move(fallback));
+  for (auto& given : v) {
+    fs::path p(given);
+    if (p.is_relative()) p = fs::path(file_).parent_path() / p;
+    const std::string resolved = fs::absolute(p).lexically_normal().string();
+    std::error_code ec;
+    if (!fs::is_regular_file(resolved, ec)) fail(key, "no such file: " + given + " (looked for " + resolved + ")");
+    given = resolved;
+  }
+  if (out_ != nullptr) {
+    toml::array a;
+    for (const auto& x : v) a.push_back(x);
+    out_->insert_or_assign(key, std::move(a));
+  }
+  return v;
+}
+
 std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::initializer_list<std::string_view> allowed) {
   std::string v = string(key, std::move(fallback));

@@ -73,6 +73,9 @@ class TableReader {
   /// A required file path, relative to the folder of the scene file unless absolute; the
   /// resolved scene records it absolute (it then reads back from any folder).
   std::string path(std::string_view key);
+  /// A list of paths to existing files, each resolved as path() does (recorded absolute); a
+  /// missing file is an error naming the key.
+  std::vector<std::string> existing_file_list(std::string_view key, std::vector<std::string> fallback);
   /// A string restricted to `allowed` (the error lists them).
   std::string choice(std::string_view key, std::string fallback,
                      std::initializer_list<std::string_view> allowed);

@@ -2,6 +2,7 @@
 // Observers read the simulation at output times through a read-only StateView.
 // insitu/ implements them (VTK writers, filters, series); the solver never
 // includes insitu/ headers, VTK or HDF5.
+#include <functional>
 #include <string>
 
 #include "solver/core/grid.hpp"
@@ -34,6 +35,8 @@ struct StateView {
   long long step = 0;
   std::string output_dir;                 ///< the run's output folder
   const Provenance* provenance = nullptr; ///< null: not recorded
+  /// The run's log (run.log and the terminal), one line per call; null: no log (tests).
+  const std::function<void(const std::string&)>* log = nullptr;
 };
 
 class Observer {

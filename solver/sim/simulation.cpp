@@ -55,6 +55,7 @@ StateView Simulation::view(const std::string& output_dir) const {
   v.step = step_;
   v.output_dir = output_dir;
   v.provenance = &provenance_;
+  v.log = log_ ? &log_ : nullptr;
   return v;
 }
 

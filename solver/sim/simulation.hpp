@@ -38,6 +38,8 @@ class Simulation {
   /// What the observers record about how the run was made (StateView::provenance).
   void set_provenance(Provenance provenance) { provenance_ = std::move(provenance); }
   void set_progress_callback(std::function<void(const Progress&)> callback);
+  /// Where observers write log lines (StateView::log), e.g. a Catalyst script's traceback.
+  void set_log(std::function<void(const std::string&)> log) { log_ = std::move(log); }
 
   /// Runs to the scene's end time (or max_steps, or a stop request). Throws NumericalFailure
   /// on a blow-up, naming step, time, cell and variable.
@@ -110,6 +112,7 @@ class Simulation {
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
   std::vector<std::unique_ptr<Observer>> observers_;
   std::function<void(const Progress&)> progress_;
+  std::function<void(const std::string&)> log_;
   std::function<void(const Simulation&)> checkpoint_;
   std::function<bool()> stop_requested_;
   Provenance provenance_;
