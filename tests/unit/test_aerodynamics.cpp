@@ -122,6 +122,26 @@ TEST(Torque, StokesLimitAndDennisFit) {
   EXPECT_NEAR(rotation_torque(1.2, mu, d, -w, 0.0), -ct * std::pow(d, 5) * 1.2 * w * w / 64.0, 1e-25);
 }
 
+TEST(Torque, FitStaysFiniteAndContinuousAsTheRelativeRotationVanishes) {
+  // A subnormal relative rotation (viscous gas at rest ahead of the shock, one-way coupling)
+  // made Re_w underflow to 0 and the fit inf * 0 = NaN. The torque per unit rotation M / w must
+  // tend to the fit's limit 32.1 * 4 / 64 mu d^3 (no division by Re_w), and agree across the
+  // switch to the closed form at Re_w = 1e-100.
+  const double mu = 1.85e-5, d = 1e-4, rho = 1.2;
+  const double limit = 32.1 * 4.0 / 64.0 * mu * d * d * d;
+  for (double w : {4.9e-324, 1e-310, 1e-200, 1e-120, 1e-60, 1e-20}) {
+    const double m = rotation_torque(rho, mu, d, w, 0.0);
+    ASSERT_TRUE(std::isfinite(m)) << w;
+    // (Below ~1e-290 the torque itself, ~4e-17 w, is under the smallest double and rounds to 0.)
+    if (w > 1e-250) EXPECT_NEAR(m / w, limit, 1e-6 * limit) << w;
+    EXPECT_EQ(rotation_torque(rho, mu, d, -w, 0.0), -m) << w;
+  }
+  const double w_switch = 1e-100 * 4.0 * mu / (rho * d * d);
+  const double below = rotation_torque(rho, mu, d, w_switch * (1 - 1e-9), 0.0) / (w_switch * (1 - 1e-9));
+  const double above = rotation_torque(rho, mu, d, w_switch * (1 + 1e-9), 0.0) / (w_switch * (1 + 1e-9));
+  EXPECT_NEAR(below, above, 1e-12 * above);
+}
+
 TEST(Heat, RanzMarshallPostShockExample) {
   EXPECT_NEAR(nusselt_ranz_marshall(1998.5, 0.714), 25.97, 0.01);
   EXPECT_DOUBLE_EQ(nusselt_ranz_marshall(0.0, 0.7), 2.0);
