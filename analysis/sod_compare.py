@@ -131,6 +131,32 @@ def scene_setup(outdir):
     return state(ini["left"]), state(ini["right"]), ini["position"], gas.get("gamma", 1.4)
 
 
+def cell_widths(x):
+    """Widths of the cells whose centres are x (faces midway, the ends mirrored)."""
+    return np.diff(np.concatenate([[x[0] - (x[1] - x[0]) / 2], 0.5 * (x[1:] + x[:-1]), [x[-1] + (x[-1] - x[-2]) / 2]]))
+
+
+def l1_error(numeric, exact_at_cells, dx):
+    """Cell-width-weighted mean |numeric - exact|: the L1 error of one quantity."""
+    return float(np.sum(np.abs(numeric - exact_at_cells) * dx) / np.sum(dx))
+
+
+def l1_errors(outdir, row=None):
+    """L1 errors of density, velocity and pressure of a riemann run's last output against
+    the exact solution (its states from scene.resolved.toml), and that output's time."""
+    setup = scene_setup(outdir)
+    if not setup:
+        raise SystemExit("sod_compare.py: %s is not a riemann run" % outdir)
+    L, R, x0, g = setup
+    t, path = last_dataset(outdir)
+    if t <= 0:
+        raise SystemExit("sod_compare.py: the last dataset is at t = 0")
+    x, rho, u, pres = read_row(path, row)
+    cr, cu, cp = exact(x, t, x0, L, R, g)
+    dx = cell_widths(x)
+    return {"density": l1_error(rho, cr, dx), "velocity": l1_error(u, cu, dx), "pressure": l1_error(pres, cp, dx)}, t
+
+
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("outdir")
@@ -158,14 +184,14 @@ def main(argv):
     xe = np.linspace(x.min(), x.max(), 2000)
     er, eu, ep = exact(xe, t, x0, L, R, g)
     cr, cu, cp = exact(x, t, x0, L, R, g)
-    dx = np.diff(np.concatenate([[x[0] - (x[1] - x[0]) / 2], 0.5 * (x[1:] + x[:-1]), [x[-1] + (x[-1] - x[-2]) / 2]]))
+    dx = cell_widths(x)
     fig, axes = plt.subplots(3, 1, figsize=(7, 9), sharex=True)
     for ax, num, ex, cell_exact, label in ((axes[0], rho, er, cr, "density [kg/m$^3$]"),
                                            (axes[1], u, eu, cu, "velocity [m/s]"),
                                            (axes[2], pres, ep, cp, "pressure [Pa]")):
         ax.plot(xe, ex, "k-", lw=1, label="exact")
         ax.plot(x, num, "o", ms=2.5, color="tab:red", label="dustlift")
-        l1 = np.sum(np.abs(num - cell_exact) * dx) / np.sum(dx)
+        l1 = l1_error(num, cell_exact, dx)
         ax.set_ylabel(label)
         ax.set_title("L1 error %.3e" % l1, fontsize=9)
         ax.legend(fontsize=8)

@@ -4,6 +4,10 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -163,6 +167,65 @@ TEST_F(AnalysisScripts, SummarizeRunPrintsTheReadmeLinesFromTheSeriesAndTheLastV
                         "alpha_p max 0.300 (alpha_g min 0.700)"),
             std::string::npos)
       << output;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dustlift
+
+namespace dustlift {
+namespace {
+
+/// analysis/accuracy_cost.py --tiny (issue 11): the report's machinery on a two-by-two study.
+/// Sod with first order and MUSCL-3 at 50 and 100 cells, and the suite's mini coupled scene at
+/// DEM Courant 0.1 / 0.2 and with Magnus on / off: a CSV row per setting with a finite error and
+/// wall time, the errors ordered as they must be, the report and its plots written.
+TEST_F(AnalysisScripts, AccuracyCostReportsEverySettingWithAFiniteErrorAndWallTime) {
+  const auto dir = fresh_dir("accuracy_cost");
+  {
+    std::ifstream in(std::string(DUSTLIFT_SOURCE_DIR) + "/tests/support/shock_over_dust.hpp");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto a = text.find("R\"(") + 3, b = text.find(")\";", a);
+    std::ofstream(dir / "mini.toml") << text.substr(a, b - a);
+  }
+  const std::string build = fs::path(DUSTLIFT_BINARY).parent_path().string();
+  const auto [status, output] = run(script("accuracy_cost.py") + " --tiny --build " + build + " --coupled-scene " +
+                                    (dir / "mini.toml").string() + " --work " + (dir / "work").string() +
+                                    " --report " + (dir / "report" / "accuracy-cost.md").string());
+  ASSERT_EQ(status, 0) << output;
+  std::ifstream csv(dir / "report" / "accuracy-cost" / "accuracy_cost.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("study,setting,reference,error,error_unit,wall_s,steps", 0), 0u) << line;
+  std::map<std::string, double> error;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',') && f.size() < 7;) f.push_back(cell);
+    ASSERT_EQ(f.size(), 7u) << line;
+    const double e = std::stod(f[3]), wall = std::stod(f[5]);
+    EXPECT_TRUE(std::isfinite(e) && e >= 0.0) << line;
+    EXPECT_TRUE(std::isfinite(wall) && wall > 0.0) << line;
+    EXPECT_GT(std::stoi(f[6]), 0) << line;
+    error[f[0] + "/" + f[1]] = e;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 8) << "4 gas + 4 coupled settings";
+  ASSERT_EQ(error.size(), 8u);
+  // Against the exact solution: MUSCL-3 beats first order, more cells beat fewer.
+  EXPECT_LT(error["gas_sod/M3-mm 100 cells CFL 0.6"], error["gas_sod/M3-mm 50 cells CFL 0.6"]);
+  EXPECT_LT(error["gas_sod/M3-mm 100 cells CFL 0.6"], error["gas_sod/1st 100 cells CFL 0.6"]);
+  EXPECT_GT(error["gas_sod/1st 50 cells CFL 0.6"], 0.01);
+  // Each coupled study's reference is zero from itself, the other setting differs.
+  EXPECT_EQ(error["courant/nu 0.1"], 0.0);
+  EXPECT_EQ(error["effects/all on"], 0.0);
+  EXPECT_GT(error["effects/no Magnus"], 0.0);
+  for (const char* png : {"gas_sod.png", "coupled.png"})
+    EXPECT_GT(fs::file_size(dir / "report" / "accuracy-cost" / png), 10'000u) << png;
+  std::ifstream md(dir / "report" / "accuracy-cost.md");
+  const std::string report((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("## How to choose"), std::string::npos) << report;
   fs::remove_all(dir);
 }
 
