@@ -4,16 +4,7 @@
 
 #include "insitu/vtk_datasets.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
-#include <vtkStringArray.h>
-#include <vtkIdTypeArray.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkRectilinearGrid.h>
 #include <vtkSmartPointer.h>

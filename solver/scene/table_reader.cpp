@@ -266,21 +266,23 @@ std::string TableReader::string(std::string_view key, std::string fallback) {
 std::string TableReader::path(std::string_view key) {
   std::string given = string(key, "");
   if (given.empty()) fail(key, "missing required file path");
+  const std::string resolved = resolve_path(given);
+  if (out_ != nullptr) out_->insert_or_assign(key, resolved);
+  return resolved;
+}
+
+std::string TableReader::resolve_path(const std::string& given) const {
   namespace fs = std::filesystem;
   fs::path p(given);
   if (p.is_relative()) p = fs::path(file_).parent_path() / p;
-  const std::string resolved = fs::absolute(p).lexically_normal().string();
-  if (out_ != nullptr) out_->insert_or_assign(key, resolved);
-  return resolved;
+  return fs::absolute(p).lexically_normal().string();
 }
 
 std::vector<std::string> TableReader::existing_file_list(std::string_view key, std::vector<std::string> fallback) {
   namespace fs = std::filesystem;
   std::vector<std::string> v = string_list(key, std::move(fallback));
   for (auto& given : v) {
-    fs::path p(given);
-    if (p.is_relative()) p = fs::path(file_).parent_path() / p;
-    const std::string resolved = fs::absolute(p).lexically_normal().string();
+    const std::string resolved = resolve_path(given);
     std::error_code ec;
     if (!fs::is_regular_file(resolved, ec)) fail(key, "no such file: " + given + " (looked for " + resolved + ")");
     given = resolved;

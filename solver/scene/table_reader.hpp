@@ -111,6 +111,8 @@ class TableReader {
 
  private:
   const toml::node* node(std::string_view key) const;
+  /// `given` relative to the folder of the scene file unless absolute, made absolute.
+  std::string resolve_path(const std::string& given) const;
   /// "file:line", or "--set 'a.b=v'" when the value (or the table holding it) came from one.
   std::string where(const toml::node* n, const std::string& full) const;
   void mark(std::string_view key);
