@@ -32,12 +32,48 @@ void reconstruct_row(const StencilRows& q, double* left, double* right, int n, d
   }
 }
 
+/// The same values for a row of faces whose stencil cells are contiguous (x-faces: q[f] is
+/// cell f, face f lies between cells f-1 and f): each cell's two limited slopes are computed
+/// once and give both its face values, its right face's left state and its left face's
+/// right state, instead of twice (muscl_extrapolation_pair: the same operations, so the same
+/// bits).
+template <Limiter L>
+[[gnu::noinline]] void reconstruct_contiguous_row(const double* q, double* left, double* right, int n, double kappa,
+                                                  double b) {
+  const double* __restrict c = q;
+  double* __restrict l = left;
+  double* __restrict r = right;
+  double plus = 0.0, minus = 0.0;
+  // Cell -1 gives only face 0's left state, cell n-1 only face n-1's right state.
+  muscl_extrapolation_pair<L>(c[-1], c[-1] - c[-2], c[0] - c[-1], kappa, b, plus, minus);
+  l[0] = plus;
+  for (int i = 0; i < n - 1; ++i) {
+    double pl, mi;
+    muscl_extrapolation_pair<L>(c[i], c[i] - c[i - 1], c[i + 1] - c[i], kappa, b, pl, mi);
+    l[i + 1] = pl;
+    r[i] = mi;
+  }
+  muscl_extrapolation_pair<L>(c[n - 1], c[n - 1] - c[n - 2], c[n] - c[n - 1], kappa, b, plus, minus);
+  r[n - 1] = minus;
+}
+
+template <Reconstruction Order, Limiter L>
+void reconstruct_variable(const StencilRows& q, double* left, double* right, int n, double kappa, double b) {
+  if constexpr (Order != Reconstruction::FirstOrder) {
+    if (q.m2 + 1 == q.m1 && q.m1 + 1 == q.c0 && q.c0 + 1 == q.p1) {
+      reconstruct_contiguous_row<L>(q.c0, left, right, n, kappa, b);
+      return;
+    }
+  }
+  reconstruct_row<Order, L>(q, left, right, n, kappa, b);
+}
+
 template <Reconstruction Order, Limiter L>
 void reconstruct_all(const FaceRowInput& in, const FaceRowScratch& s, double kappa, double b) {
-  reconstruct_row<Order, L>(in.rho, s.rho_l, s.rho_r, in.faces, kappa, b);
-  reconstruct_row<Order, L>(in.u, s.u_l, s.u_r, in.faces, kappa, b);
-  reconstruct_row<Order, L>(in.v, s.v_l, s.v_r, in.faces, kappa, b);
-  reconstruct_row<Order, L>(in.p, s.p_l, s.p_r, in.faces, kappa, b);
+  reconstruct_variable<Order, L>(in.rho, s.rho_l, s.rho_r, in.faces, kappa, b);
+  reconstruct_variable<Order, L>(in.u, s.u_l, s.u_r, in.faces, kappa, b);
+  reconstruct_variable<Order, L>(in.v, s.v_l, s.v_r, in.faces, kappa, b);
+  reconstruct_variable<Order, L>(in.p, s.p_l, s.p_r, in.faces, kappa, b);
 }
 
 /// Positivity safeguard: a face whose reconstructed rho or p is <= 0 on either side falls

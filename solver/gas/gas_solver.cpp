@@ -83,6 +83,10 @@ struct GasSolver::Impl {
   /// nx; and the face pressures p~ (unweighted) on the same faces.
   std::array<std::vector<double>, 4> fx, fy;
   std::vector<double> fx_pressure, fy_pressure;
+  /// Per y-face row (ny+1) and x-face row (ny): the thread that computes it before the fused
+  /// loop, or -1 (fluxes_and_update); set for face_owners_for_threads threads.
+  std::vector<int> y_face_owner, x_face_owner;
+  int face_owners_for_threads = 0;
   /// Cells a stage updates, per interior row: [row_lo[j], row_hi[j]). Outside, the whole
   /// stencil rests at one state and has no source, so the update would change no bit
   /// (skip_resting; docs/gas-solver.md). Without skipping every row is [0, nx).
@@ -102,8 +106,9 @@ struct GasSolver::Impl {
   /// Inflow states along each boundary (one per boundary cell).
   std::vector<PrimitiveState> inflow_left, inflow_right, inflow_bottom, inflow_top;
   /// Per-thread scratch rows of the flux and stage kernels (kScratchRows arrays of scratch_len).
-  std::vector<double> scratch;
-  std::size_t scratch_len = 0;
+  /// Mutable: stable_dt (const) uses it too.
+  mutable std::vector<double> scratch;
+  mutable std::size_t scratch_len = 0;
   /// Per row: first faulty interior cell index (or -1) and its fault.
   std::vector<int> fault_i;
   std::vector<CellFault> fault_kind;
@@ -129,6 +134,8 @@ struct GasSolver::Impl {
     }
     fx_pressure.assign(static_cast<std::size_t>(nx + 1) * ny, 0.0);
     fy_pressure.assign(static_cast<std::size_t>(nx) * (ny + 1), 0.0);
+    y_face_owner.assign(static_cast<std::size_t>(ny + 1), -1);
+    x_face_owner.assign(static_cast<std::size_t>(ny), -1);
     row_lo.assign(static_cast<std::size_t>(ny), 0);
     row_hi.assign(static_cast<std::size_t>(ny), nx);
     rest_to.assign(static_cast<std::size_t>(ny + 2 * ng), -ng - 1);
@@ -275,7 +282,7 @@ struct GasSolver::Impl {
   }
 
   // ---------------------------------------------------------------- fluxes
-  double* thread_scratch_base() {
+  double* thread_scratch_base() const {
     return scratch.data() + static_cast<std::size_t>(omp_get_thread_num()) * kScratchRows * scratch_len;
   }
   /// Scratch rows for the flux kernels (the first 8 of this thread's rows).
@@ -293,7 +300,7 @@ struct GasSolver::Impl {
   }
 
   /// Sized once for the current thread count (so normally no allocation in step()).
-  void ensure_scratch() {
+  void ensure_scratch() const {
     scratch_len = static_cast<std::size_t>(std::max(nx, ny) + 1);
     const auto threads = static_cast<std::size_t>(threaded ? omp_get_max_threads() : 1);
     if (scratch.size() < threads * kScratchRows * scratch_len) scratch.resize(threads * kScratchRows * scratch_len);
@@ -379,22 +386,19 @@ struct GasSolver::Impl {
                     fy[2].data() + row, fy[3].data() + row, i1 - i0);
   }
 
-  /// x-faces [row_lo, row_hi] of each row: those of its active cells (face f lies between
-  /// cells f-1 and f).
+  /// x-faces [row_lo, row_hi] of row j: those of its active cells (face f lies between
+  /// cells f-1 and f). Reads the primitives of row j (and of rows j-1, j+1 when viscous).
   template <class Th>
-  void compute_x_fluxes(const Th& th) {
+  void x_flux_row(const Th& th, int j) {
     const std::size_t nf = static_cast<std::size_t>(nx + 1);
-#pragma omp for schedule(static)
-    for (int j = 0; j < ny; ++j) {
-      const int f0 = row_lo[static_cast<std::size_t>(j)], f1 = row_hi[static_cast<std::size_t>(j)] + 1;
-      if (f1 - f0 < 2) continue;
-      const std::size_t row = static_cast<std::size_t>(j) * nf + static_cast<std::size_t>(f0);
-      inviscid_flux_row(th, muscl, face_row_input(at(f0 - 1, j), 1, f1 - f0), thread_scratch(),
-                        {fx[0].data() + row, fx[1].data() + row, fx[2].data() + row, fx[3].data() + row,
-                         fx_pressure.data() + row},
-                        1.0, 0.0);
-      if (viscous) viscous_x_row(j, f0, f1);
-    }
+    const int f0 = row_lo[static_cast<std::size_t>(j)], f1 = row_hi[static_cast<std::size_t>(j)] + 1;
+    if (f1 - f0 < 2) return;
+    const std::size_t row = static_cast<std::size_t>(j) * nf + static_cast<std::size_t>(f0);
+    inviscid_flux_row(th, muscl, face_row_input(at(f0 - 1, j), 1, f1 - f0), thread_scratch(),
+                      {fx[0].data() + row, fx[1].data() + row, fx[2].data() + row, fx[3].data() + row,
+                       fx_pressure.data() + row},
+                      1.0, 0.0);
+    if (viscous) viscous_x_row(j, f0, f1);
   }
 
   /// y-faces of face row jf under the active cells of the rows on either side.
@@ -410,70 +414,117 @@ struct GasSolver::Impl {
     }
   }
 
+  /// y-faces of face row jf (between cell rows jf-1 and jf). Reads the primitives of rows
+  /// jf-2 .. jf+1.
   template <class Th>
-  void compute_y_fluxes(const Th& th) {
+  void y_flux_row(const Th& th, int jf) {
     const auto step = static_cast<std::size_t>(stride);
-#pragma omp for schedule(static)
-    for (int jf = 0; jf <= ny; ++jf) {
-      int i0 = 0, i1 = 0;
-      y_face_range(jf, i0, i1);
-      if (i1 <= i0) continue;
-      const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i0);
-      inviscid_flux_row(th, muscl, face_row_input(at(i0, jf - 1), step, i1 - i0), thread_scratch(),
-                        {fy[0].data() + row, fy[1].data() + row, fy[2].data() + row, fy[3].data() + row,
-                         fy_pressure.data() + row},
-                        0.0, 1.0);
-      if (viscous) viscous_y_row(jf, i0, i1);
+    int i0 = 0, i1 = 0;
+    y_face_range(jf, i0, i1);
+    if (i1 <= i0) return;
+    const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i0);
+    inviscid_flux_row(th, muscl, face_row_input(at(i0, jf - 1), step, i1 - i0), thread_scratch(),
+                      {fy[0].data() + row, fy[1].data() + row, fy[2].data() + row, fy[3].data() + row,
+                       fy_pressure.data() + row},
+                      0.0, 1.0);
+    if (viscous) viscous_y_row(jf, i0, i1);
+  }
+
+  /// First interior row of thread t of `threads` in the fused flux-and-update loop.
+  int row_begin(int t, int threads) const {
+    return static_cast<int>(static_cast<long long>(ny) * t / threads);
+  }
+
+  /// The face rows that read cell rows of two threads' ranges must be computed before any
+  /// of those rows changes: y-face rows j0-1 .. j0+1 (inviscid stencil rows jf-2 .. jf+1) and
+  /// x-face rows j0-1, j0 (viscous tangential derivatives, rows j-1 .. j+1) at each range
+  /// start j0. Each is given to the lowest thread whose boundary needs it; -1: computed by
+  /// the thread owning its rows, in its row loop.
+  void assign_boundary_faces(int threads) {
+    std::fill(y_face_owner.begin(), y_face_owner.end(), -1);
+    std::fill(x_face_owner.begin(), x_face_owner.end(), -1);
+    for (int t = threads - 1; t >= 1; --t) {
+      const int j0 = row_begin(t, threads);
+      if (j0 <= 0 || j0 >= ny) continue;
+      for (int k = std::max(j0 - 1, 0); k <= std::min(j0 + 1, ny); ++k) y_face_owner[static_cast<std::size_t>(k)] = t;
+      for (int k = std::max(j0 - 1, 0); k <= std::min(j0, ny - 1); ++k) x_face_owner[static_cast<std::size_t>(k)] = t;
+    }
+    face_owners_for_threads = threads;
+  }
+
+  /// Fluxes and stage update fused row by row, so that a row's face fluxes are still in
+  /// cache when the row is updated: row r is updated as soon as every face that reads its
+  /// step-stage primitives is computed (y-face rows up to r+2, x-face rows up to r+1). Each
+  /// face is computed once, from the same inputs as in separate passes, so the result is
+  /// bitwise the same. Runs inside the stage's parallel region.
+  template <class Th>
+  void fluxes_and_update(const Th& th, double dt, double c_new) {
+    const int threads = omp_get_num_threads(), tid = omp_get_thread_num();
+#pragma omp single
+    if (face_owners_for_threads != threads) assign_boundary_faces(threads);
+    for (int k = 0; k <= ny; ++k)
+      if (y_face_owner[static_cast<std::size_t>(k)] == tid) y_flux_row(th, k);
+    for (int k = 0; k < ny; ++k)
+      if (x_face_owner[static_cast<std::size_t>(k)] == tid) x_flux_row(th, k);
+#pragma omp barrier
+    const int j0 = row_begin(tid, threads), j1 = row_begin(tid + 1, threads);
+    if (j0 >= j1) return;
+    auto y_unowned = [&](int k) { return k <= ny && y_face_owner[static_cast<std::size_t>(k)] < 0; };
+    auto x_unowned = [&](int k) { return k < ny && x_face_owner[static_cast<std::size_t>(k)] < 0; };
+    for (int k = j0; k <= j0 + 1; ++k)
+      if (y_unowned(k)) y_flux_row(th, k);
+    if (x_unowned(j0)) x_flux_row(th, j0);
+    for (int r = j0; r < j1; ++r) {
+      if (y_unowned(r + 2)) y_flux_row(th, r + 2);
+      if (x_unowned(r + 1)) x_flux_row(th, r + 1);
+      update_row(th, r, dt, c_new);
     }
   }
 
   /// U = c_old U0 + c_new (U + dt L(U)) with c_old = 1 - c_new, written as
-  /// U0 + c_new (U - U0 + dt L) (stage_update.hpp), on the active cells of each row; then the
+  /// U0 + c_new (U - U0 + dt L) (stage_update.hpp), on the active cells of row j; then the
   /// primitives of the cells whose state changed, and the checks.
   template <class Th>
-  void update(const Th& th, double dt, double c_new) {
+  void update_row(const Th& th, int j, double dt, double c_new) {
     const std::size_t nfx = static_cast<std::size_t>(nx + 1);
     const std::size_t nfy = static_cast<std::size_t>(nx);
     const auto sx = static_cast<std::size_t>(stride);
-#pragma omp for schedule(static)
-    for (int j = 0; j < ny; ++j) {
-      const int i0 = row_lo[static_cast<std::size_t>(j)], i1 = row_hi[static_cast<std::size_t>(j)];
-      fault_i[static_cast<std::size_t>(j)] = -1;
-      fault_kind[static_cast<std::size_t>(j)] = CellFault::None;
-      if (i1 <= i0) continue;
-      const std::size_t c = at(i0, j);
-      const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i0);
-      const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i0);
-      StageRow r{};
-      for (int k = 0; k < 4; ++k) {
-        r.U0[k] = U0[k].data() + c;
-        r.U[k] = U[k].data() + c;
-        r.source[k] = source[k].data() + c;
-        r.fx[k] = fx[k].data() + kx;
-        r.fy_below[k] = fy[k].data() + ky;
-        r.fy_above[k] = fy[k].data() + ky + nfy;
-      }
-      r.fx_pressure = fx_pressure.data() + kx;
-      r.fy_pressure_below = fy_pressure.data() + ky;
-      r.fy_pressure_above = fy_pressure.data() + ky + nfy;
-      r.alpha = alpha.data() + c;
-      r.alpha_below = alpha.data() + c - sx;
-      r.alpha_above = alpha.data() + c + sx;
-      r.inv_dx = inv_dx.data() + static_cast<std::size_t>(i0 + ng);
-      r.inv_dy = geo(inv_dy, j);
-      r.gas_constant = R;
-      r.gravity_x = config.gravity_x;
-      r.gravity_y = config.gravity_y;
-      r.rho = rho.data() + c;
-      r.u = u.data() + c;
-      r.v = v.data() + c;
-      r.p = p.data() + c;
-      r.T = T.data() + c;
-      r.n = i1 - i0;
-      save_step_start(j, i0, i1);
-      const int bad = stage_update_row(th, r, stage_scratch(), dt, c_new);
-      if (bad >= 0) record_fault(j, i0 + bad);
+    const int i0 = row_lo[static_cast<std::size_t>(j)], i1 = row_hi[static_cast<std::size_t>(j)];
+    fault_i[static_cast<std::size_t>(j)] = -1;
+    fault_kind[static_cast<std::size_t>(j)] = CellFault::None;
+    if (i1 <= i0) return;
+    const std::size_t c = at(i0, j);
+    const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i0);
+    const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i0);
+    StageRow r{};
+    for (int k = 0; k < 4; ++k) {
+      r.U0[k] = U0[k].data() + c;
+      r.U[k] = U[k].data() + c;
+      r.source[k] = source[k].data() + c;
+      r.fx[k] = fx[k].data() + kx;
+      r.fy_below[k] = fy[k].data() + ky;
+      r.fy_above[k] = fy[k].data() + ky + nfy;
     }
+    r.fx_pressure = fx_pressure.data() + kx;
+    r.fy_pressure_below = fy_pressure.data() + ky;
+    r.fy_pressure_above = fy_pressure.data() + ky + nfy;
+    r.alpha = alpha.data() + c;
+    r.alpha_below = alpha.data() + c - sx;
+    r.alpha_above = alpha.data() + c + sx;
+    r.inv_dx = inv_dx.data() + static_cast<std::size_t>(i0 + ng);
+    r.inv_dy = geo(inv_dy, j);
+    r.gas_constant = R;
+    r.gravity_x = config.gravity_x;
+    r.gravity_y = config.gravity_y;
+    r.rho = rho.data() + c;
+    r.u = u.data() + c;
+    r.v = v.data() + c;
+    r.p = p.data() + c;
+    r.T = T.data() + c;
+    r.n = i1 - i0;
+    save_step_start(j, i0, i1);
+    const int bad = stage_update_row(th, r, stage_scratch(), dt, c_new);
+    if (bad >= 0) record_fault(j, i0 + bad);
   }
 
   /// Saves U0 = U for the cells of [i0, i1) not saved yet this step. A cell outside the hull
@@ -598,9 +649,7 @@ struct GasSolver::Impl {
         widen_active_ranges();
       }
       if (viscous) compute_transport(th);
-      compute_x_fluxes(th);
-      compute_y_fluxes(th);
-      update(th, dt, c_new);
+      fluxes_and_update(th, dt, c_new);
     }
     for (int j = 0; j < ny; ++j) cell_updates += row_hi[static_cast<std::size_t>(j)] - row_lo[static_cast<std::size_t>(j)];
     throw_on_fault();
@@ -749,6 +798,7 @@ struct GasSolver::Impl {
 
   template <class Th>
   double stable_dt(const Th& th) const {
+    ensure_scratch();
     double max_rate = 0.0;
     double min_viscous_dt = std::numeric_limits<double>::infinity();
     const bool table = viscous && config.transport.model == TransportModel::GordonWilke;
@@ -756,8 +806,9 @@ struct GasSolver::Impl {
     for (int j = 0; j < ny; ++j) {
       const double idy = geo(inv_dy, j);
       const std::size_t c0 = at(0, j);
+      double* const sc = thread_scratch_base();
       const TimeStepRow row{u.data() + c0, v.data() + c0, T.data() + c0, rho.data() + c0,
-                            inv_dx.data() + static_cast<std::size_t>(ng), idy, nx};
+                            inv_dx.data() + static_cast<std::size_t>(ng), idy, nx, sc, sc + scratch_len};
       time_step_row(th, table ? &air_table : nullptr, row, max_rate, min_viscous_dt);
       if (!viscous || table) continue;
       for (int i = 0; i < nx; ++i) {

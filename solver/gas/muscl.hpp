@@ -42,29 +42,33 @@ inline double minmod(double a, double b) {
   return a * b <= 0.0 ? 0.0 : smaller;
 }
 
-/// Extrapolated value of cell q (backward difference dm, forward difference dp) at its
-/// face on side Side (+1: right face, -1: left face), limiter fixed at compile time.
-template <Limiter L, int Side>
-inline double muscl_extrapolate(double q, double dm, double dp, double kappa, double b) {
+/// Both face values of cell q at once, its right face (plus) and its left face (minus):
+/// the limited slopes computed once for both (x-face rows, flux_rows_kernels.hpp).
+template <Limiter L>
+inline void muscl_extrapolation_pair(double q, double dm, double dp, double kappa, double b, double& plus,
+                                     double& minus) {
   const double k = kappa;
   if constexpr (L == Limiter::Minmod) {
     const double dm_lim = minmod(dm, b * dp);
     const double dp_lim = minmod(dp, b * dm);
-    if constexpr (Side > 0) {
-      return q + 0.25 * ((1.0 - k) * dm_lim + (1.0 + k) * dp_lim);
-    } else {
-      return q - 0.25 * ((1.0 - k) * dp_lim + (1.0 + k) * dm_lim);
-    }
+    plus = q + 0.25 * ((1.0 - k) * dm_lim + (1.0 + k) * dp_lim);
+    minus = q - 0.25 * ((1.0 - k) * dp_lim + (1.0 + k) * dm_lim);
   } else {
-    // van Albada: epsilon relative to the local scale guards 0/0 on flat data only.
     const double eps = 1e-12 * (q * q) + 1e-300;
     const double s = std::max(0.0, (2.0 * dp * dm + eps) / (dp * dp + dm * dm + eps));
-    if constexpr (Side > 0) {
-      return q + 0.25 * s * ((1.0 - k * s) * dm + (1.0 + k * s) * dp);
-    } else {
-      return q - 0.25 * s * ((1.0 - k * s) * dp + (1.0 + k * s) * dm);
-    }
+    plus = q + 0.25 * s * ((1.0 - k * s) * dm + (1.0 + k * s) * dp);
+    minus = q - 0.25 * s * ((1.0 - k * s) * dp + (1.0 + k * s) * dm);
   }
+}
+
+/// Extrapolated value of cell q (backward difference dm, forward difference dp) at its
+/// face on side Side (+1: right face, -1: left face), limiter fixed at compile time. (The
+/// other face's value is dead code once inlined.)
+template <Limiter L, int Side>
+inline double muscl_extrapolate(double q, double dm, double dp, double kappa, double b) {
+  double plus = 0.0, minus = 0.0;
+  muscl_extrapolation_pair<L>(q, dm, dp, kappa, b, plus, minus);
+  return Side > 0 ? plus : minus;
 }
 
 /// Run-time dispatching form of the above (side +1 or -1).

@@ -15,6 +15,9 @@ struct TimeStepRow {
   const double* inv_dx;  ///< per cell
   double inv_dy;
   int n;
+  /// Scratch of n doubles each for the transport properties (used when viscous).
+  double* mu_scratch = nullptr;
+  double* lambda_scratch = nullptr;
 };
 
 /// Raises max_rate to the largest (|u| + c)/dx + (|v| + c)/dy of the row and, when `viscous`
