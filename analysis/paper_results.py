@@ -140,6 +140,18 @@ def table(runs):
     row("Fig. 5b (proxy): mean h(k_t/k_n = 0.2) − h(0.002), 25–125 mm", "lower above 0.02", 0.0, "max",
         lambda r: mean_profile_difference(runs.get("proxy_kt10000"), runs.get("proxy_clm0"), 25, 125, False)
         if r is a else math.nan, " mm")
+    row("Fig. 5a (full scene): mean abs(h(k_n = 500 kN/m) − h(50 kN/m)), 50–250 mm", "no effect of k_n", 0.2, "max",
+        lambda r: mean_profile_difference(runs.get("kn500k"), runs.get("clm0"), 50, 250, True)
+        if r is a else math.nan, " mm")
+    row("Fig. 5a (full scene): mean abs(h(k_n = 100 kN/m) − h(50 kN/m)), 50–250 mm", "no effect of k_n", 0.2, "max",
+        lambda r: mean_profile_difference(runs.get("kn100k"), runs.get("clm0"), 50, 250, True)
+        if r is a else math.nan, " mm")
+    row("Fig. 5b (full scene): mean h(k_t/k_n = 0.2) − h(0.002), 50–250 mm", "lower above 0.02", 0.0, "max",
+        lambda r: mean_profile_difference(runs.get("kt10000"), runs.get("clm0"), 50, 250, False)
+        if r is a else math.nan, " mm")
+    row("Fig. 5b (full scene): mean abs(h(k_t/k_n = 0.0002) − h(0.002)), 50–250 mm", "(no change below 0.02)", 0.2,
+        "max", lambda r: mean_profile_difference(runs.get("kt10"), runs.get("clm0"), 50, 250, True)
+        if r is a else math.nan, " mm")
     row("Fig. 7a: mean abs(h(500 µm) − h(250 µm)), 50–250 mm, below half a 500 µm cell (the height's resolution)",
         "converged 500 → 250 µm", 0.25, "max", lambda r: mean_profile_difference(runs.get("grid500"), a, 50, 250, True) if r is a else math.nan,
         " mm")
@@ -358,13 +370,18 @@ def main(argv):
     runs = {n: numbers_of(a.outroot, n) for n in names}
     runs = {n: r for n, r in runs.items() if r is not None}
 
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
-    profile_panel(axes[0], runs, ["proxy_clm0", "proxy_kn100k", "proxy_kn500k"],
-                  ["k_n = 50 kN/m", "100 kN/m", "500 kN/m"], "Fig. 5a on the proxy (0.3 ms, C_LM = 0)", 150, 145)
-    profile_panel(axes[1], runs, ["proxy_kt10", "proxy_clm0", "proxy_kt1000", "proxy_kt10000"],
-                  ["k_t/k_n = 0.0002", "0.002", "0.02", "0.2"], "Fig. 5b on the proxy (0.3 ms, C_LM = 0)", 150, 145)
-    profile_panel(axes[2], runs, ["clm0", "h0p30", "h0p50"], ["h = 0.10 mN s/m", "0.30", "0.50"],
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8))
+    profile_panel(axes[0][0], runs, ["clm0", "kn100k", "kn500k"], ["k_n = 50 kN/m", "100 kN/m", "500 kN/m"],
+                  "Fig. 5a (C_LM = 0)")
+    profile_panel(axes[0][1], runs, ["kt10", "clm0", "kt1000", "kt10000"], ["k_t/k_n = 0.0002", "0.002", "0.02", "0.2"],
+                  "Fig. 5b (C_LM = 0)")
+    profile_panel(axes[0][2], runs, ["clm0", "h0p30", "h0p50"], ["h = 0.10 mN s/m", "0.30", "0.50"],
                   "Fig. 5c (C_LM = 0)")
+    profile_panel(axes[1][0], runs, ["proxy_clm0", "proxy_kn100k", "proxy_kn500k"],
+                  ["k_n = 50 kN/m", "100 kN/m", "500 kN/m"], "Fig. 5a on the proxy (0.3 ms, C_LM = 0)", 150, 145)
+    profile_panel(axes[1][1], runs, ["proxy_kt10", "proxy_clm0", "proxy_kt1000", "proxy_kt10000"],
+                  ["k_t/k_n = 0.0002", "0.002", "0.02", "0.2"], "Fig. 5b on the proxy (0.3 ms, C_LM = 0)", 150, 145)
+    axes[1][2].axis("off")
     save(fig, a.docs, "fig5.png")
     fig, ax = plt.subplots(figsize=(6, 4))
     profile_panel(ax, runs, ["clm0", "clm0p1", "clm0p5", "paper"], ["C_LM = 0", "0.1", "0.5", "1.0"], "Fig. 6")
@@ -394,7 +411,8 @@ def main(argv):
         f.write("\nReadings of the paper and their band numbers (0.01 ms means; proxy at 0.3 ms, full scene at "
                 "0.6 ms):\n\n")
         f.write(readings_table(runs, ["paper", "jittered", "hexagonal", "cap03", "proxy_paper", "proxy_jittered_clm1",
-                                      "proxy_hexagonal", "proxy_nocoulomb", "proxy_cap03"]))
+                                      "proxy_hexagonal", "proxy_nocoulomb", "proxy_cap03", "proxy_xi2_linear",
+                                      "proxy_xi2_none"]))
     print("wrote", os.path.join(a.docs, "numbers.md"))
     with open(os.path.join(a.docs, "runs.md"), "w") as f:
         f.write("<!-- written by analysis/paper_results.py; do not edit -->\n| run | wall (s) | steps | log |\n"

@@ -43,6 +43,11 @@ runs=(
   "jittered|paper|particles.layer.arrangement=jittered_lattice"
   "clm0p1|paper|coupling.magnus_coefficient=0.1"
   "hexagonal|paper|particles.layer.arrangement=hexagonal"
+  "kn500k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
+  "kn100k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=1.0e5 particles.contact.k_t=200"
+  "kt10|paper|coupling.magnus_coefficient=0 particles.contact.k_t=10"
+  "kt1000|paper|coupling.magnus_coefficient=0 particles.contact.k_t=1000"
+  "kt10000|paper|coupling.magnus_coefficient=0 particles.contact.k_t=10000"
   "proxy_paper|proxy|"
   "proxy_jittered_clm1|proxy|particles.layer.arrangement=jittered_lattice"
   "proxy_hexagonal|proxy|particles.layer.arrangement=hexagonal"
@@ -56,6 +61,8 @@ runs=(
   "proxy_kn100k|proxy|coupling.magnus_coefficient=0 particles.contact.k_n=1.0e5 particles.contact.k_t=200"
   "proxy_kn500k|proxy|coupling.magnus_coefficient=0 particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
   "proxy_jittered|proxy|coupling.magnus_coefficient=0 particles.layer.arrangement=jittered_lattice"
+  "proxy_xi2_none|proxy|coupling.volume_fraction_correction=none"
+  "proxy_xi2_linear|proxy|coupling.volume_fraction_correction=linear"
 )
 
 if [ "$list" = 1 ]; then
