@@ -134,24 +134,23 @@ def table(runs):
         " mm")
     row("lifting delay: spread over C_LM = 0, 0.1, 0.5, 1.0 ((max − min)/mean)", "the same for all C_LM", 0.2, "max",
         lambda r: delay_spread(runs, ["clm0", "clm0p1", "clm0p5", "paper"]) if r is a else math.nan)
-    row("Fig. 5a (proxy): mean abs(h(k_n = 500 kN/m) − h(50 kN/m)), 25–125 mm", "no effect of k_n", 0.2, "max",
-        lambda r: mean_profile_difference(runs.get("proxy_kn500k"), runs.get("proxy_clm0"), 25, 125, True)
-        if r is a else math.nan, " mm")
-    row("Fig. 5b (proxy): mean h(k_t/k_n = 0.2) − h(0.002), 25–125 mm", "lower above 0.02", 0.0, "max",
-        lambda r: mean_profile_difference(runs.get("proxy_kt10000"), runs.get("proxy_clm0"), 25, 125, False)
-        if r is a else math.nan, " mm")
-    row("Fig. 5a (full scene): mean abs(h(k_n = 500 kN/m) − h(50 kN/m)), 50–250 mm", "no effect of k_n", 0.2, "max",
-        lambda r: mean_profile_difference(runs.get("kn500k"), runs.get("clm0"), 50, 250, True)
-        if r is a else math.nan, " mm")
-    row("Fig. 5a (full scene): mean abs(h(k_n = 100 kN/m) − h(50 kN/m)), 50–250 mm", "no effect of k_n", 0.2, "max",
-        lambda r: mean_profile_difference(runs.get("kn100k"), runs.get("clm0"), 50, 250, True)
-        if r is a else math.nan, " mm")
-    row("Fig. 5b (full scene): mean h(k_t/k_n = 0.2) − h(0.002), 50–250 mm", "lower above 0.02", 0.0, "max",
-        lambda r: mean_profile_difference(runs.get("kt10000"), runs.get("clm0"), 50, 250, False)
-        if r is a else math.nan, " mm")
-    row("Fig. 5b (full scene): mean abs(h(k_t/k_n = 0.0002) − h(0.002)), 50–250 mm", "(no change below 0.02)", 0.2,
-        "max", lambda r: mean_profile_difference(runs.get("kt10"), runs.get("clm0"), 50, 250, True)
-        if r is a else math.nan, " mm")
+    # Parameter studies: (what, paper, value, verdict kind, run, reference run, x0, x1 (mm), |difference|).
+    for what, paper_text, value, kind, study, reference, x0, x1, absolute in (
+            ("Fig. 5a (proxy): mean abs(h(k_n = 500 kN/m) − h(50 kN/m)), 25–125 mm", "no effect of k_n", 0.2, "max",
+             "proxy_kn500k", "proxy_clm0", 25, 125, True),
+            ("Fig. 5b (proxy): mean h(k_t/k_n = 0.2) − h(0.002), 25–125 mm", "lower above 0.02", 0.0, "max",
+             "proxy_kt10000", "proxy_clm0", 25, 125, False),
+            ("Fig. 5a (full scene): mean abs(h(k_n = 500 kN/m) − h(50 kN/m)), 50–250 mm", "no effect of k_n", 0.2,
+             "max", "kn500k", "clm0", 50, 250, True),
+            ("Fig. 5a (full scene): mean abs(h(k_n = 100 kN/m) − h(50 kN/m)), 50–250 mm", "no effect of k_n", 0.2,
+             "max", "kn100k", "clm0", 50, 250, True),
+            ("Fig. 5b (full scene): mean h(k_t/k_n = 0.2) − h(0.002), 50–250 mm", "lower above 0.02", 0.0, "max",
+             "kt10000", "clm0", 50, 250, False),
+            ("Fig. 5b (full scene): mean abs(h(k_t/k_n = 0.0002) − h(0.002)), 50–250 mm", "(no change below 0.02)",
+             0.2, "max", "kt10", "clm0", 50, 250, True)):
+        row(what, paper_text, value, kind,
+            lambda r, s=study, ref=reference, lo=x0, hi=x1, ab=absolute:
+            mean_profile_difference(runs.get(s), runs.get(ref), lo, hi, ab) if r is a else math.nan, " mm")
     row("Fig. 7a: mean abs(h(500 µm) − h(250 µm)), 50–250 mm, below half a 500 µm cell (the height's resolution)",
         "converged 500 → 250 µm", 0.25, "max", lambda r: mean_profile_difference(runs.get("grid500"), a, 50, 250, True) if r is a else math.nan,
         " mm")
