@@ -43,6 +43,7 @@ runs=(
   "jittered|paper|particles.layer.arrangement=jittered_lattice"
   "clm0p1|paper|coupling.magnus_coefficient=0.1"
   "hexagonal|paper|particles.layer.arrangement=hexagonal"
+  "xi2_none|paper|coupling.volume_fraction_correction=none"
   "kn500k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
   "kn100k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=1.0e5 particles.contact.k_t=200"
   "kt10|paper|coupling.magnus_coefficient=0 particles.contact.k_t=10"
