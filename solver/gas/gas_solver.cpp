@@ -454,7 +454,7 @@ struct GasSolver::Impl {
 
   /// Fluxes and stage update fused row by row, so that a row's face fluxes are still in
   /// cache when the row is updated: row r is updated as soon as every face that reads its
-  /// step-stage primitives is computed (y-face rows up to r+2, x-face rows up to r+1). Each
+  /// stage-input primitives is computed (y-face rows up to r+2, x-face rows up to r+1). Each
   /// face is computed once, from the same inputs as in separate passes, so the result is
   /// bitwise the same. Runs inside the stage's parallel region.
   template <class Th>
