@@ -54,6 +54,7 @@ inline void muscl_extrapolation_pair(double q, double dm, double dp, double kapp
     plus = q + 0.25 * ((1.0 - k) * dm_lim + (1.0 + k) * dp_lim);
     minus = q - 0.25 * ((1.0 - k) * dp_lim + (1.0 + k) * dm_lim);
   } else {
+    // van Albada: epsilon relative to the local scale guards 0/0 on flat data only.
     const double eps = 1e-12 * (q * q) + 1e-300;
     const double s = std::max(0.0, (2.0 * dp * dm + eps) / (dp * dp + dm * dm + eps));
     plus = q + 0.25 * s * ((1.0 - k * s) * dm + (1.0 + k * s) * dp);
