@@ -6,7 +6,7 @@
 // Counters: particle-steps per second (wall clock) and per CPU second, 1 and 2 threads.
 //   cmake --build build/release --target bench_dem_layer
 //   ./build/release/bench/bench_dem_layer --benchmark_repetitions=3
-// (OMP_WAIT_POLICY defaults to passive here; see main.)
+// (Threads wait as in the dustlift program: solver/core/wait_policy.hpp; see main.)
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "bench/run_benchmarks.hpp"
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/contact_law.hpp"
 #include "solver/dem/layer_generator.hpp"
@@ -93,14 +94,4 @@ void BM_DemReferenceLayer(benchmark::State& state) {
 
 BENCHMARK(BM_DemReferenceLayer)->Arg(1)->Arg(2)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 
-// Threads that wait at a barrier sleep instead of spinning (unless OMP_WAIT_POLICY is
-// set): on a machine shared by several jobs a spinning thread burns the time slice its
-// partner needs, and 2-thread runs became 7x slower than 1-thread ones (docs/dem.md).
-int main(int argc, char** argv) {
-  setenv("OMP_WAIT_POLICY", "passive", 0);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return dustlift::bench::run_benchmarks(argc, argv); }

@@ -6,6 +6,7 @@
 //      --benchmark_report_aggregates_only=true   (compare the medians)
 #include <benchmark/benchmark.h>
 
+#include "bench/run_benchmarks.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/sim/simulation.hpp"
 
@@ -59,4 +60,4 @@ BENCHMARK(BM_SimulationAdvanceGasOnly)->Unit(benchmark::kMillisecond)->UseRealTi
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return dustlift::bench::run_benchmarks(argc, argv); }

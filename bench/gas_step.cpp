@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include "bench/run_benchmarks.hpp"
 #include "solver/gas/gas_solver.hpp"
 
 using namespace dustlift;
@@ -118,4 +119,4 @@ BENCHMARK(BM_GasStepViscousThermallyPerfect)->Arg(1)->Arg(2)->Unit(benchmark::kM
 BENCHMARK(BM_GasStepInviscidThermallyPerfect)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GasStepInviscidCaloricallyPerfect)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) { return dustlift::bench::run_benchmarks(argc, argv); }

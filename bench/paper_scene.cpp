@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "insitu/outputs.hpp"
+#include "solver/core/wait_policy.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/sim/simulation.hpp"
 
@@ -27,6 +28,7 @@ using namespace dustlift;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  reexec_with_default_wait_policy(argv);  // threads wait as in the dustlift program
   std::string scene_path = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock.toml";
   double end = 6e-4;
   int threads = 2;
@@ -94,6 +96,6 @@ int main(int argc, char** argv) {
                 p->size(), substeps, p->neighbour_rebuilds(), stepped / coupled,
                 substeps * static_cast<double>(p->size()) / coupled);
   }
-  std::printf("\n");
+  std::printf("\n%s\n", wait_policy_description().c_str());
   return 0;
 }

@@ -25,6 +25,7 @@
 #include "solver/app/sweep.hpp"
 #include "solver/app/version.hpp"
 #include "solver/core/errors.hpp"
+#include "solver/core/wait_policy.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"
@@ -123,14 +124,9 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
 }  // namespace
 
 int main(int argc, char** argv) {
-  // OpenMP threads wait passively unless the user chose a policy: on a shared machine a
-  // spinning thread takes the core the other thread (or another job) needs, which made
-  // 2-thread runs many times slower while anything else ran (README, "Shared machines").
-  // libgomp reads OMP_WAIT_POLICY when it loads, before main, so the program restarts itself
-  // once with it set (if that fails, it carries on with the runtime's default).
-  if (std::getenv("OMP_WAIT_POLICY") == nullptr && setenv("OMP_WAIT_POLICY", "passive", 1) == 0) {
-    execv("/proc/self/exe", argv);
-  }
+  // Threads wait passively after a short spin unless the user chose a policy
+  // (solver/core/wait_policy.hpp); libgomp reads it before main, hence the restart.
+  reexec_with_default_wait_policy(argv);
   CLI::App app{"dustlift: 2-D compressible CFD-DEM solver for shock-induced dust lifting"};
   app.set_version_flag("--version", std::string("dustlift ") + code_version());
   app.require_subcommand(1);

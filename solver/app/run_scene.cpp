@@ -16,6 +16,7 @@
 #include "solver/app/output_folder.hpp"
 #include "solver/app/version.hpp"
 #include "solver/core/errors.hpp"
+#include "solver/core/wait_policy.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"
@@ -95,6 +96,7 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   log.line(fmt::format("dustlift {}", code_version()));
   log.line(fmt::format("command: {}", options.command_line));
   log.line(fmt::format("dustlift run {} -> {} ({} threads)", options.scene_label, out_dir, omp_get_max_threads()));
+  log.line("  " + wait_policy_description());
   if (options.restart != nullptr) {
     log.line(fmt::format("  restarted at t = {:.6e} s, step {}{}", sim.time(), sim.step(),
                          continuing ? ", continuing the series in this folder"
