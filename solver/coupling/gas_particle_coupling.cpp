@@ -75,8 +75,10 @@ void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1) {
 
 /// Zeroes rows [0, rows) of the interior of f.
 void clear_rows(const Grid2D& g, Field2D& f, int rows) {
-  for (int j = 0; j < std::min(rows, g.ny()); ++j)
-    for (int i = 0; i < g.nx(); ++i) f(i, j) = 0.0;
+  const int nx = g.nx(), n_rows = std::min(rows, g.ny());
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(n_rows) * nx >= kParallelParcels)
+  for (int j = 0; j < n_rows; ++j)
+    for (int i = 0; i < nx; ++i) f(i, j) = 0.0;
 }
 
 }  // namespace
@@ -273,9 +275,12 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
     ps.pressure_fy[k] = c.pressure_fy;
   }
   // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).
-  for (ParcelColumn c : {col_.impulse_x, col_.impulse_y, col_.work, col_.heat}) {
-    std::vector<double>& v = ps.column(c);
-    std::fill(v.begin(), v.end(), 0.0);
+  double* exchanged[] = {ps.column(col_.impulse_x).data(), ps.column(col_.impulse_y).data(),
+                         ps.column(col_.work).data(), ps.column(col_.heat).data()};
+  const std::size_t all = ps.size();
+#pragma omp parallel for schedule(static) if (all >= kParallelParcels)
+  for (std::size_t k = 0; k < all; ++k) {
+    for (double* c : exchanged) c[k] = 0.0;
   }
 }
 
@@ -358,21 +363,12 @@ void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
 
 void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt) {
   deposit_alpha(ps);  // also makes the stencils at the new positions
-  const int substeps = exchange_.substeps;
-  exchange_ = ExchangeTotals{};
-  exchange_.substeps = substeps;
+  last_dt_ = dt;
+  if (!cfg_.two_way) return;
   const double* jx = ps.column(col_.impulse_x).data();
   const double* jy = ps.column(col_.impulse_y).data();
   const double* work = ps.column(col_.work).data();
   const double* heat = ps.column(col_.heat).data();
-  for (std::size_t k = 0; k < ps.size(); ++k) {
-    const double nr = ps.n_real[k];
-    exchange_.parcel_impulse_x += nr * jx[k];
-    exchange_.parcel_impulse_y += nr * jy[k];
-    exchange_.parcel_work += nr * work[k];
-    exchange_.parcel_heat += nr * heat[k];
-  }
-  if (!cfg_.two_way) return;
   clear_rows(grid_, src_x_, rows_touched_);
   clear_rows(grid_, src_y_, rows_touched_);
   clear_rows(grid_, src_e_, rows_touched_);
@@ -389,13 +385,15 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
     src_e_(i, j) += w * energy;
   });
   const int rows = rows_touched_;
+  const int nx = grid_.nx();
   Field2D& sx = gas.source(1);
   Field2D& sy = gas.source(2);
   Field2D& se = gas.source(3);
   // Rows [rows, cleared) held parcels before and none now: their sources go back to zero;
-  // rows above them never held any.
+  // rows above them never held any. Every cell on its own: any split over threads.
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(cleared_to_) * nx >= kParallelParcels)
   for (int j = 0; j < cleared_to_; ++j) {
-    for (int i = 0; i < grid_.nx(); ++i) {
+    for (int i = 0; i < nx; ++i) {
       alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
       if (j >= rows) {
         sx(i, j) = sy(i, j) = se(i, j) = 0.0;
@@ -404,13 +402,35 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
       sx(i, j) = -src_x_(i, j);
       sy(i, j) = -src_y_(i, j);
       se(i, j) = -src_e_(i, j);
-      const double area_dt = grid_.area(i, j) * dt;
-      exchange_.gas_impulse_x += src_x_(i, j) * area_dt;
-      exchange_.gas_impulse_y += src_y_(i, j) * area_dt;
-      exchange_.gas_energy += src_e_(i, j) * area_dt;
     }
   }
   gas.change_porosity(alpha_g_, 0, cleared_to_);
+}
+
+ExchangeTotals GasParticleCoupling::last_exchange(const ParcelSystem& ps) const {
+  ExchangeTotals e;
+  e.substeps = last_substeps_;
+  const double* jx = ps.column(col_.impulse_x).data();
+  const double* jy = ps.column(col_.impulse_y).data();
+  const double* work = ps.column(col_.work).data();
+  const double* heat = ps.column(col_.heat).data();
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    const double nr = ps.n_real[k];
+    e.parcel_impulse_x += nr * jx[k];
+    e.parcel_impulse_y += nr * jy[k];
+    e.parcel_work += nr * work[k];
+    e.parcel_heat += nr * heat[k];
+  }
+  if (!cfg_.two_way) return e;
+  for (int j = 0; j < rows_touched_; ++j) {
+    for (int i = 0; i < grid_.nx(); ++i) {
+      const double area_dt = grid_.area(i, j) * last_dt_;
+      e.gas_impulse_x += src_x_(i, j) * area_dt;
+      e.gas_impulse_y += src_y_(i, j) * area_dt;
+      e.gas_energy += src_e_(i, j) * area_dt;
+    }
+  }
+  return e;
 }
 
 std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, ParcelSystem& ps, double dt) {
@@ -485,7 +505,7 @@ void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double 
     const ScopedTimer t(timings_.relief);
     stiff_exchange_relief(gas, parcels, dt, active);
   }
-  exchange_.substeps = parcels.advance(dt);
+  last_substeps_ = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);
   check_parcels(parcels);
   deposit_exchange(gas, parcels, dt);

@@ -52,7 +52,9 @@ class GasParticleCoupling {
   /// variable if a parcel state becomes non-finite.
   void advance(GasSolver& gas, ParcelSystem& parcels, double dt);
 
-  const ExchangeTotals& last_exchange() const { return exchange_; }
+  /// The exchange totals of the last advance() of `parcels` (summed on demand, in parcel and
+  /// cell order: a diagnostic, kept out of the step).
+  ExchangeTotals last_exchange(const ParcelSystem& parcels) const;
   /// Wall seconds spent sampling the gas (with the models), in the stiff-exchange relief,
   /// and depositing alpha_p and the exchange terms (with the porosity update).
   struct Timings {
@@ -141,7 +143,8 @@ class GasParticleCoupling {
   long long stencil_dem_steps_ = -1;      ///< ParcelSystem::steps() when they were made
   int rows_touched_ = 0;  ///< deposit rows [0, rows_touched_) to clear next time
   int cleared_to_ = 0;    ///< rows the last deposit cleared (they may have changed)
-  ExchangeTotals exchange_;
+  int last_substeps_ = 0;        ///< DEM sub-steps of the last advance()
+  double last_dt_ = 0.0;         ///< its CFD step (the sources are rates over it)
   Timings timings_;
   bool skip_resting_ = true;
   GasSolver::RestingGas resting_;

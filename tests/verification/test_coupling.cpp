@@ -179,7 +179,7 @@ TEST(Coupling, ClosedBoxConservesMassAndExchangesExactly) {
     const GasTotals before = sim.gas().totals();
     (void)before;
     sim.advance(1.0);
-    const ExchangeTotals& e = sim.coupling()->last_exchange();
+    const ExchangeTotals e = sim.coupling()->last_exchange(*sim.parcels());
     // What the gas gives through f_p, s_p, q_p equals what the parcels receive, step by step.
     const double scale_p = std::abs(e.parcel_impulse_x) + std::abs(e.parcel_impulse_y) + 1e-300;
     const double scale_e = std::abs(e.parcel_work) + std::abs(e.parcel_heat) + 1e-300;
