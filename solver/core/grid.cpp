@@ -12,6 +12,9 @@ double geometric_growth_ratio(double first, double length, std::size_t cells) {
     throw std::invalid_argument("geometric stretching needs cells > 0, first > 0, length > 0");
   }
   const double n = static_cast<double>(cells);
+  // One cell is the whole region: it may be narrower than the uniform cells (a half cell at
+  // a wall puts the cell centres of a node-centred grid's points, docs/gas-solver.md).
+  if (cells == 1) return 1.0;
   if (length < first * n) {
     throw std::invalid_argument("stretched region shorter than its cells at the uniform width");
   }

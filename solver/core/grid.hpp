@@ -34,7 +34,8 @@ inline constexpr std::size_t kMaxAxisCells = 1'000'000;
 std::vector<double> build_axis_nodes(const AxisSpec& spec);
 
 /// Growth ratio r of a geometric progression of `cells` cells whose first cell is `first`
-/// and whose total length is `length` (r = 1 when length == cells * first).
+/// and whose total length is `length` (r = 1 when length == cells * first, or when there is
+/// one cell, which is then the whole region, whatever its width).
 double geometric_growth_ratio(double first, double length, std::size_t cells);
 
 /// One axis with ghost cells: interior cells 0..n-1, ghosts -ng..-1 and n..n+ng-1.

@@ -146,3 +146,24 @@ TEST(Scene, StretchedAxisMatchesPaperGrid) {
   EXPECT_DOUBLE_EQ(x.front(), -0.4);
   EXPECT_DOUBLE_EQ(y.back(), 0.050);
 }
+
+TEST(Scene, OneNarrowCellAtAWallPutsCellCentresOnTheNodeCentredPoints) {
+  // The paper's 161 y points read as the unknowns of a node-centred grid: a half cell at the
+  // floor (-2 mm), then 250 um cells centred on the points, one of them on the layer top y = 0.
+  const Scene s = parse_scene(kMinimal, "scene.toml",
+                              {"grid.y={ start = -0.002, end = 0.050, cell_size = 250e-6, uniform_start = -0.001875, "
+                               "cells_below = 1, uniform_end = 0.031875, cells_above = 24 }",
+                               "initial.position=0.5"});
+  const auto y = build_axis_nodes(s.grid.y);
+  ASSERT_EQ(y.size(), 161u);
+  EXPECT_DOUBLE_EQ(y[0], -0.002);
+  EXPECT_NEAR(y[1] - y[0], 125e-6, 1e-15);
+  EXPECT_NEAR(y[2] - y[1], 250e-6, 1e-15);
+  const Axis axis(y, 2);
+  EXPECT_NEAR(axis.center(8), 0.0, 1e-15) << "a cell centre on the layer top";
+  EXPECT_NEAR(axis.width(8), 250e-6, 1e-15);
+  // Two or more stretched cells still may not be narrower than the uniform ones.
+  AxisSpec two = s.grid.y;
+  two.cells_below = 2;
+  EXPECT_THROW(build_axis_nodes(two), std::invalid_argument);
+}
