@@ -44,6 +44,7 @@ runs=(
   "clm0p1|paper|coupling.magnus_coefficient=0.1"
   "hexagonal|paper|particles.layer.arrangement=hexagonal"
   "xi2_none|paper|coupling.volume_fraction_correction=none"
+  "nodegrid|paper|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.031875"
   "kn500k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
   "kn100k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=1.0e5 particles.contact.k_t=200"
   "kt10|paper|coupling.magnus_coefficient=0 particles.contact.k_t=10"
@@ -64,6 +65,7 @@ runs=(
   "proxy_jittered|proxy|coupling.magnus_coefficient=0 particles.layer.arrangement=jittered_lattice"
   "proxy_xi2_none|proxy|coupling.volume_fraction_correction=none"
   "proxy_xi2_linear|proxy|coupling.volume_fraction_correction=linear"
+  "proxy_nodegrid|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875"
 )
 
 if [ "$list" = 1 ]; then
