@@ -87,6 +87,18 @@ TEST(PaperComparisonScripts, MeasureAReducedPaperRunAsTheCodeDefinesIt) {
   } else {
     EXPECT_NEAR(py_delay, cpp.lifting_delay * 1e3, 1e-6) << json;
   }
+  // The delay at other thresholds (its sensitivity): the same rule, so the 0.1 mm entry is
+  // the delay itself, and a higher threshold is never crossed nearer the shock.
+  const double d005 = json_number(json, "0.05 mm"), d01 = json_number(json, "0.1 mm"),
+               d02 = json_number(json, "0.2 mm"), delay = json_number(json, "lifting_delay_mm");
+  ASSERT_TRUE(std::isnan(d01) || d01 > -1e300) << "lifting_delay_by_threshold_mm missing: " << json;
+  if (std::isnan(delay)) {
+    EXPECT_TRUE(std::isnan(d01)) << json;
+  } else {
+    EXPECT_EQ(d01, delay) << json;
+    if (!std::isnan(d005)) EXPECT_LE(d005, d01) << json;
+    if (!std::isnan(d02)) EXPECT_LE(d01, d02) << json;
+  }
   // Band forces: the shock pushes the surface band down (drag, pressure < 0, larger in the
   // 1 us bins than in the 0.01 ms means) and the floor pushes back (contact > 0).
   const double drag_1us = json_number(json, "drag_down_1us_uN"), drag_10us = json_number(json, "drag_down_10us_uN");
