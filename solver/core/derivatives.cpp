@@ -81,11 +81,11 @@ double axis_derivative(const Axis& a, int k, At at) {
   const int n = a.cells();
   if (n < 2) return 0.0;
   if (n == 2) return (at(1) - at(0)) / (a.center(1) - a.center(0));
-  const int first = k == 0 ? 0 : (k == n - 1 ? n - 3 : k - 1);
-  const ThreePointWeights w = derivative_weights(a.center(first), a.center(first + 1), a.center(first + 2), a.center(k));
+  // The weights of the axis's centres, made once (Axis::derivative_stencil).
+  const Axis::DerivativeStencil& w = a.derivative_stencil(k);
   // The weights sum to zero: written as differences, a uniform field gives exactly 0.
-  const double f1 = at(first + 1);
-  return w.w0 * (at(first) - f1) + w.w2 * (at(first + 2) - f1);
+  const double f1 = at(w.first + 1);
+  return w.w0 * (at(w.first) - f1) + w.w2 * (at(w.first + 2) - f1);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "solver/core/grid.hpp"
 
+#include "solver/core/derivatives.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -117,6 +119,15 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
     centers_[k] = 0.5 * (faces_[k] + faces_[k + 1]);
     widths_[k] = faces_[k + 1] - faces_[k];
     if (!(widths_[k] > 0.0)) throw std::invalid_argument("axis nodes must increase strictly");
+  }
+  if (n_ >= 3) {
+    derivative_.resize(static_cast<std::size_t>(n_));
+    for (int k = 0; k < n_; ++k) {
+      const int first = k == 0 ? 0 : (k == n_ - 1 ? n_ - 3 : k - 1);
+      const ThreePointWeights w =
+          derivative_weights(center(first), center(first + 1), center(first + 2), center(k));
+      derivative_[static_cast<std::size_t>(k)] = {first, w.w0, w.w2};
+    }
   }
   const double length = interior_faces_.back() - interior_faces_.front();
   const std::size_t buckets =

@@ -57,11 +57,23 @@ class Axis {
   /// Index of the interior cell holding coordinate s (clamped to [0, n-1]).
   int locate(double s) const;
   const std::vector<double>& interior_faces() const { return interior_faces_; }
+  /// The three-point Lagrange derivative at interior centre k (one-sided at the ends), made
+  /// once from the centres:
+  ///   d f/ds = w0 (f[first] - f[first+1]) + w2 (f[first+2] - f[first+1])
+  /// (derivatives.hpp; an axis of fewer than three cells has none).
+  struct DerivativeStencil {
+    int first = 0;
+    double w0 = 0.0, w2 = 0.0;
+  };
+  const DerivativeStencil& derivative_stencil(int k) const {
+    return derivative_[static_cast<std::size_t>(k)];
+  }
 
  private:
   int n_ = 0;
   int ng_ = 0;
   std::vector<double> faces_, centers_, widths_, interior_faces_;
+  std::vector<DerivativeStencil> derivative_;
   /// locate() in O(1): the axis cut into equal buckets no wider than its smallest cell (at
   /// most 4 n of them), each with the first cell it overlaps.
   double bucket_width_ = 1.0;

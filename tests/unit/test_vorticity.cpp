@@ -93,4 +93,39 @@ TEST(Vorticity, SmoothFieldConvergesAtSecondOrder) {
 }
 
 }  // namespace
+TEST(Vorticity, RowKernelsMatchTheSpanFormAndGradientsOfAQuadraticAreExact) {
+  // The rows the coupling samples (vorticity_z_rows, gradient_rows) read each axis's
+  // derivative weights made once (Axis::derivative_stencil): the same numbers as the weights
+  // made per cell, and exact for a quadratic field on a stretched grid, walls included.
+  const Grid2D grid = stretched_grid(17, 13);
+  for (const Axis* a : {&grid.x(), &grid.y()}) {
+    for (int k = 0; k < a->cells(); ++k) {
+      const int first = k == 0 ? 0 : (k == a->cells() - 1 ? a->cells() - 3 : k - 1);
+      const auto w = derivative_weights(a->center(first), a->center(first + 1), a->center(first + 2), a->center(k));
+      EXPECT_EQ(a->derivative_stencil(k).first, first);
+      EXPECT_EQ(a->derivative_stencil(k).w0, w.w0);
+      EXPECT_EQ(a->derivative_stencil(k).w2, w.w2);
+    }
+  }
+  Field2D f(grid), u(grid), v(grid), dfdx(grid), dfdy(grid), w_rows(grid);
+  for (int j = 0; j < grid.ny(); ++j)
+    for (int i = 0; i < grid.nx(); ++i) {
+      const double x = grid.x().center(i), y = grid.y().center(j);
+      f(i, j) = 1.0 + 2.0 * x - 3.0 * y + 0.5 * x * x - 1.5 * x * y + 2.5 * y * y;
+      u(i, j) = std::sin(3.0 * x) * std::cos(2.0 * y);
+      v(i, j) = std::cos(x + y);
+    }
+  gradient_rows(grid, f, 0, grid.ny(), dfdx, dfdy);
+  vorticity_z_rows(grid, u, v, 0, grid.ny(), w_rows);
+  const auto w_span = vorticity_z(grid, u, v);
+  double worst = 0.0;
+  for (int j = 0; j < grid.ny(); ++j)
+    for (int i = 0; i < grid.nx(); ++i) {
+      const double x = grid.x().center(i), y = grid.y().center(j);
+      worst = std::max({worst, std::abs(dfdx(i, j) - (2.0 + x - 1.5 * y)), std::abs(dfdy(i, j) - (-3.0 - 1.5 * x + 5.0 * y))});
+      EXPECT_EQ(w_rows(i, j), w_span[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j]);
+    }
+  EXPECT_LT(worst, 1e-9);
+}
+
 }  // namespace dustlift
