@@ -164,6 +164,9 @@ def table(runs):
     for band, what, paper_text, value, key in (
             ("surface", "surface band: contact peak (0.01 ms mean)", "+80 µN", 80.0, "contact_up_10us_uN"),
             ("surface", "surface band: time of the contact peak", "0.01 ms", 10.0, "contact_up_10us_tau_us"),
+            ("surface", "surface band: first upward contact (0.01 ms mean)", "+80 µN", 80.0, "contact_first_up_10us_uN"),
+            ("surface", "surface band: time of the first upward contact", "0.01 ms", 10.0,
+             "contact_first_up_10us_tau_us"),
             ("surface", "surface band: pressure peak (1 µs bins)", "−10 µN", -10.0, "pressure_down_1us_uN"),
             ("surface", "surface band: pressure peak (0.01 ms mean)", "−10 µN", -10.0, "pressure_down_10us_uN"),
             ("surface", "surface band: drag peak (1 µs bins)", "−20 µN", -20.0, "drag_down_1us_uN"),

@@ -99,6 +99,15 @@ TEST(PaperComparisonScripts, MeasureAReducedPaperRunAsTheCodeDefinesIt) {
     if (!std::isnan(d005)) EXPECT_LE(d005, d01) << json;
     if (!std::isnan(d02)) EXPECT_LE(d01, d02) << json;
   }
+  // The first upward contact comes no later and is no larger than the largest one.
+  const double first_up = json_number(json, "contact_first_up_10us_uN");
+  const double largest_up = json_number(json, "contact_up_10us_uN");
+  ASSERT_TRUE(std::isnan(first_up) || first_up > -1e300) << json;
+  if (!std::isnan(first_up)) {
+    EXPECT_GT(first_up, 0.0) << json;
+    EXPECT_LE(first_up, largest_up) << json;
+    EXPECT_LE(json_number(json, "contact_first_up_10us_tau_us"), json_number(json, "contact_up_10us_tau_us")) << json;
+  }
   // Band forces: the shock pushes the surface band down (drag, pressure < 0, larger in the
   // 1 us bins than in the 0.01 ms means) and the floor pushes back (contact > 0).
   const double drag_1us = json_number(json, "drag_down_1us_uN"), drag_10us = json_number(json, "drag_down_10us_uN");
