@@ -266,17 +266,23 @@ def main(argv):
     bounds = gas.GetDataInformation().GetBounds()
     if gas.GetDataInformation().GetNumberOfCells() == 0:
         fail("gas data in %s has no cells (failed to load?)" % gas_pvd)
+    # The views are deleted together at the end: deleting the first render view before the
+    # next one is made (Mesa llvmpipe under Xvfb) made its first render print four VTK "ERR"
+    # lines about shader vertex attributes, though the image came out right.
+    views = []
     for index, t in times_wanted(times):
         view = pressure_view(gas, parcels, t, bounds)
+        views.append(view)
         save(view, os.path.join(figures, "pressure_%06d.png" % index))
         if index == len(times) - 1:
             pv.SetActiveView(view)
             for state in [os.path.join(outdir, "pressure_parcels.pvsm")] + ([args.save_state] if args.save_state else []):
                 save_relative_state(os.path.abspath(state), outdir)
                 print("wrote", state)
-        pv.Delete(view)
         view = vorticity_view(gas, parcels, t, bounds, args.layer_height)
+        views.append(view)
         save(view, os.path.join(figures, "vorticity_%06d.png" % index))
+    for view in views:
         pv.Delete(view)
     print("render.py: %d time(s) in %.1f s" % (len(times_wanted(times)), time.time() - start))
 

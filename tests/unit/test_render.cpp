@@ -207,6 +207,10 @@ TEST_F(Render, PressureWithParcelsAndVorticityPngsAreNotBlank) {
   expect_rendered(dir_ / "figures" / "vorticity_000001.png");
   EXPECT_FALSE(fs::exists(dir_ / "figures" / "pressure_000000.png"));  // last time only
   EXPECT_TRUE(fs::exists(dir_ / "saved.pvsm"));
+  // A user sees no VTK error lines (deleting the first view before making the second printed
+  // four about shader vertex attributes under Mesa llvmpipe).
+  const std::string log = read_log(dir_ / "render.log");
+  EXPECT_EQ(log.find("ERR|"), std::string::npos) << log;
   // The state a run folder gets names its data without the folder, so it opens anywhere.
   const std::string state = read_text(dir_ / "pressure_parcels.pvsm");
   EXPECT_NE(state.find("value=\"gas.pvd\""), std::string::npos);
