@@ -4,8 +4,8 @@
 // A coupled step has about 130 fork/join and barrier points (the DEM sub-steps, the gas
 // stages, the coupling passes). With OMP_WAIT_POLICY=passive every one of them puts the
 // waiting thread to sleep in the kernel; on this project's virtual 2-core machine waking it
-// again took ~0.2 ms, and the paper scene ran 1.4x slower than with threads that spin a
-// little first (docs/performance.md, "Waiting threads"). Spinning without bound is no
+// again took up to ~0.2 ms, and the paper scene ran 1.1-1.4x slower (the more the busier the
+// host) than with threads that spin a little first (docs/performance.md, "Waiting threads"). Spinning without bound is no
 // answer either: when another job shares the cores, a spinning thread burns the time slice
 // its partner needs. The default is therefore passive waiting after a short spin
 // (GOMP_SPINCOUNT = kDefaultSpinCount, tens of microseconds): the gaps inside a step are
