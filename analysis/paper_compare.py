@@ -141,10 +141,12 @@ def band_numbers(band):
         wt, wv = windowed(tau, n, band[window_column], WINDOW)
         v, t = extreme(wt, wv, sign)
         out[name + "_10us_uN"], out[name + "_10us_tau_us"] = v * 1e6, t * 1e6
+        if name == "contact_up":
+            contact_windows = wt, wv
     # The first upward contact: the first 0.01 ms window whose mean is positive and not below
     # the next one's (the impact right after the downward push). In our layer a later, larger
     # one follows when the surface parcels land on the rebounding layer (docs/results.md).
-    wt, wv = windowed(tau, n, band["contact_window_y_N"], WINDOW)
+    wt, wv = contact_windows
     first = next((k for k in range(len(wv)) if wv[k] > 0 and (k + 1 == len(wv) or wv[k] >= wv[k + 1])), None)
     out["contact_first_up_10us_uN"] = wv[first] * 1e6 if first is not None else math.nan
     out["contact_first_up_10us_tau_us"] = wt[first] * 1e6 if first is not None else math.nan
