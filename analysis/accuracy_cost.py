@@ -19,7 +19,8 @@ Studies:
   coupled  the report proxy (cases/paper/report_proxy.toml, the paper's physics on an 80 mm
            layer to 0.15 ms): dust-surface height h(x) at the end and band-force peaks against
            each study's finest run (grid 1000/500/250 um; parcel 200/100 um at 500 um cells;
-           DEM Courant 0.05-0.4; k_n 500-50,000 N/m; skipping resting cells and parcels), and
+           DEM Courant 0.05-0.4; k_n 500-50,000 N/m; skipping resting cells and parcels, exactly
+           and within run.rest_tolerance = 1e-10), and
            the cost of each optional effect from one run with it off.
 --tiny runs two-by-two versions of the studies on --coupled-scene (the suite's test).
 --reuse keeps the sweeps whose summary.csv already lists every run as finished.
@@ -85,7 +86,8 @@ def coupled_settings(tiny):
     # sub-step count is an integer, so a DEM Courant change that small changes nothing) against the base.
     s += [("noise", "CFL 0.5", {"gas.scheme.cfl": 0.5}), ("noise", "CFL 0.5000005", {"gas.scheme.cfl": 0.5000005})]
     s += [("k_n", f"k_n {k:g}", {"particles.contact.k_n": k}) for k in (5e4, 5e3, 5e2)]
-    s += [("skip", "skipping off", {"run.skip_at_rest": "false"}), ("skip", "skipping on", {"run.skip_at_rest": "true"})]
+    s += [("skip", "skipping off", {"run.skip_at_rest": "false"}), ("skip", "skipping on", {"run.skip_at_rest": "true"}),
+          ("skip", "skipping within 1e-10", {"run.skip_at_rest": "true", "run.rest_tolerance": 1e-10})]
     s += [("effects", "all on", {}), ("effects", "inviscid", {"gas.transport.model": "inviscid"}),
           ("effects", "no Magnus", {"coupling.magnus": "false"}),
           ("effects", "no pressure force", {"coupling.pressure_force": "false"}),

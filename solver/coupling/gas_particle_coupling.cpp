@@ -10,6 +10,7 @@
 #include "solver/core/derivatives.hpp"
 #include "solver/core/errors.hpp"
 #include "solver/gas/gas_solver.hpp"
+#include "solver/gas/rest_ranges.hpp"
 #include "solver/gas/thermo.hpp"
 #include "solver/gas/transport.hpp"
 
@@ -449,12 +450,14 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
     const int* first_resting = resting_.first_resting.data();
     const int ny = grid_.ny();
     const bool valid = resting_.valid;
-    const double T_ref = resting_.T;
+    const double T_ref = resting_.T, dT = resting_.dT, du = resting_.du;
     double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelParcels)
     for (std::size_t k = 0; k < n; ++k) {
-      bool rests = valid && ps.vx[k] == 0.0 && ps.vy[k] == 0.0 && ps.omega[k] == 0.0 && ps.contact_fx[k] == 0.0 &&
-                   ps.contact_fy[k] == 0.0 && ps.contact_torque[k] == 0.0 && ps.temperature[k] == T_ref;
+      const ParcelMotion motion{ps.vx[k],         ps.vy[k],         ps.omega[k],
+                                ps.radius[k],     ps.contact_fx[k], ps.contact_fy[k],
+                                ps.contact_torque[k], ps.mass[k] / ps.n_real[k], ps.inertia[k] / ps.n_real[k]};
+      bool rests = valid && parcel_still(motion, du, dt) && std::abs(ps.temperature[k] - T_ref) <= dT;
       if (rests) {
         // The gas over the parcel's interpolation quad and derivative stencils (two cells each
         // way) rests at the reference.

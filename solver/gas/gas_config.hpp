@@ -67,6 +67,10 @@ struct GasConfig {
   /// Skip cells whose whole stencil rests at one state with no source: exact (the update
   /// would change no bit), set from the scene's run.skip_at_rest.
   bool skip_resting_cells = true;
+  /// 0: "at rest" means exactly (the default). > 0: within this relative tolerance of the
+  /// resting reference (rest_ranges.hpp), which also skips the rounding noise that runs ahead
+  /// of a shock; changes results at that level (run.rest_tolerance, docs/performance.md).
+  double rest_tolerance = 0.0;
   /// m/s^2, gravity on the gas (scene gas.gravity = [g_x, g_y]): the body force a rho g in
   /// the momenta and a rho g.u in the energy. Nonzero turns skipping off (no state rests).
   double gravity_x = 0.0;

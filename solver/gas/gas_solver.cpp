@@ -624,11 +624,7 @@ struct GasSolver::Impl {
   }
 
   RestReference rest_reference_of(std::size_t c) const {
-    RestReference r;
-    r.valid = u.data()[c] == 0.0 && v.data()[c] == 0.0;
-    r.p = p.data()[c];
-    r.T = T.data()[c];
-    return r;
+    return rest_reference(u.data()[c], v.data()[c], p.data()[c], T.data()[c], rho.data()[c], config.rest_tolerance);
   }
 
   void fill_ghosts_parallel() {
@@ -942,6 +938,8 @@ void GasSolver::resting_gas(RestingGas& out) const {
   out.valid = ref.valid && !m.config.has_gravity();
   out.p = ref.p;
   out.T = ref.T;
+  out.dT = ref.dT;
+  out.du = ref.du;
   out.first_resting.resize(static_cast<std::size_t>(m.ny));
   const int cells = m.nx + 2 * m.ng;
 #pragma omp parallel for if (m.threaded) schedule(static)

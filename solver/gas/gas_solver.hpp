@@ -56,6 +56,7 @@ class GasSolver {
   struct RestingGas {
     bool valid = false;
     double p = 0.0, T = 0.0;
+    double du = 0.0, dT = 0.0;  ///< m/s, K: how far a resting state may be from rest (run.rest_tolerance)
     std::vector<int> first_resting;
   };
   void resting_gas(RestingGas& out) const;

@@ -5,13 +5,52 @@
 // exactly from the well-balanced scheme (SLAU2 gives mass flux 0 and p~ = p to the last bit),
 // so its update changes no bit: skipping it gives bitwise the same run. Ahead of a shock the
 // gas is at rest and uniform; these ranges let a stage do only the work that changes something.
+#include <cmath>
+
 namespace dustlift {
 
-/// The resting state cells are compared with (exact equality, so "uniform" means bitwise).
+/// The resting state cells are compared with. With zero tolerances (the default) the
+/// comparison is exact equality, so "uniform" means bitwise; run.rest_tolerance > 0 widens it
+/// to |u|, |v| <= du, |p - p_ref| <= dp, |T - T_ref| <= dT (|x - y| <= 0 is x == y for finite
+/// doubles, so one comparison serves both).
 struct RestReference {
   bool valid = false;  ///< false: no cell counts as resting (the reference cell moves)
   double p = 0.0, T = 0.0;
+  double du = 0.0, dp = 0.0, dT = 0.0;  ///< absolute tolerances (m/s, Pa, K)
 };
+
+/// The reference of a cell state (u, v, p, T, rho) under relative tolerance `tol`: dp = tol p,
+/// dT = tol T, du = tol sqrt(p / rho) (the isothermal sound speed sets the velocity scale).
+/// tol = 0: valid only for a cell exactly at rest.
+inline RestReference rest_reference(double u, double v, double p, double T, double rho,
+                                    double tol) {
+  RestReference r;
+  r.p = p;
+  r.T = T;
+  if (tol > 0.0) {
+    r.dp = tol * p;
+    r.dT = tol * T;
+    r.du = tol * std::sqrt(p / rho);
+  }
+  r.valid = std::abs(u) <= r.du && std::abs(v) <= r.du;
+  return r;
+}
+
+/// A parcel's motion and the contact loads on it (per real particle).
+struct ParcelMotion {
+  double vx, vy, omega, radius;
+  double fx, fy, torque;  ///< contact force and torque
+  double mass_real, inertia_real;
+};
+
+/// Whether a parcel counts as still: its speed, the surface speed of its spin, and the speed
+/// its contact force and torque would add within dt, each at most du (m/s). du = 0: all of
+/// them exactly zero (the comparisons are written so that no product can underflow to zero).
+inline bool parcel_still(const ParcelMotion& m, double du, double dt) {
+  return std::abs(m.vx) <= du && std::abs(m.vy) <= du && std::abs(m.omega) <= du / m.radius &&
+         std::abs(m.fx) <= du * m.mass_real / dt && std::abs(m.fy) <= du * m.mass_real / dt &&
+         std::abs(m.torque) <= du * m.inertia_real / (m.radius * dt);
+}
 
 /// One grid row's u, v, p, T from its first cell on, `n` cells.
 struct RowView {
@@ -23,7 +62,8 @@ struct RowView {
 };
 
 inline bool rests_at(const RowView& r, int i, const RestReference& ref) {
-  return r.u[i] == 0.0 && r.v[i] == 0.0 && r.p[i] == ref.p && r.T[i] == ref.T;
+  return std::abs(r.u[i]) <= ref.du && std::abs(r.v[i]) <= ref.du &&
+         std::abs(r.p[i] - ref.p) <= ref.dp && std::abs(r.T[i] - ref.T) <= ref.dT;
 }
 
 /// Number of leading cells of the row that rest at `ref`.
@@ -68,7 +108,8 @@ struct ActiveRange {
 /// and the first resting at the right one (cell indices as in the grid, ghosts negative or
 /// >= n). A cell is skipped when every row of the window rests `reach` cells beyond it on
 /// the same side and no cell from it outwards has a source.
-inline ActiveRange active_range(const int* rest_to, const int* rest_from, int window, SourceExtent src, int n) {
+inline ActiveRange active_range(const int* rest_to, const int* rest_from, int window,
+                                SourceExtent src, int n) {
   const int reach = window / 2;
   int left_rest = rest_to[0], right_rest = rest_from[0];
   for (int w = 1; w < window; ++w) {

@@ -11,12 +11,14 @@
 namespace dustlift::scene_detail {
 
 void parse_run(TableReader t, RunConfig& run) {
-  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest"});
+  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest", "rest_tolerance"});
   run.name = t.string("name", run.name);
   run.end_time = t.required_number("end_time", Range::positive());
   run.max_steps = t.integer("max_steps", 0, 0, 1'000'000'000'000LL);
   run.progress_interval = t.number("progress_interval", run.progress_interval, Range::non_negative());
   run.skip_at_rest = t.boolean("skip_at_rest", run.skip_at_rest);
+  run.rest_tolerance = t.number("rest_tolerance", run.rest_tolerance, Range::closed(0.0, 1e-6));
+  if (run.rest_tolerance > 0.0 && !run.skip_at_rest) t.fail("rest_tolerance", "needs skip_at_rest = true (it widens what skipping counts as at rest)");
   t.finish();
 }
 

@@ -21,6 +21,11 @@ struct RunConfig {
   /// Skip gas cells and parcels that are exactly at rest (bitwise the same result; off only
   /// to check that, or to time the difference).
   bool skip_at_rest = true;
+  /// 0: skip only what rests exactly. > 0 (at most 1e-6): a gas cell rests when |u|, |v| <=
+  /// tol sqrt(p/rho) and p, T are within tol (relative) of the resting state, and a parcel
+  /// when it is exactly still in such gas at that temperature: the rounding noise that runs
+  /// ahead of a shock is then skipped too. Changes results at the level of that noise.
+  double rest_tolerance = 0.0;
 };
 
 /// A group of parcels chosen by where they started (paper Figs. 10 and 12).

@@ -22,6 +22,7 @@ Simulation::Simulation(const Scene& scene)
     : scene_(scene), grid_(scene.grid.x, scene.grid.y, kGhostLayers) {
   GasConfig gas_config = scene_.gas;
   gas_config.skip_resting_cells = scene_.run.skip_at_rest;
+  gas_config.rest_tolerance = scene_.run.rest_tolerance;
   gas_ = std::make_unique<GasSolver>(grid_, gas_config);
   gas_->initialize(scene_.initial);
   if (scene_.particles.enabled) {
@@ -78,6 +79,13 @@ std::vector<std::string> Simulation::enabled_effects() const {
   if (g.has_gravity())
     e.push_back("gravity on the gas: [" + fmt_number(g.gravity_x) + ", " + fmt_number(g.gravity_y) +
                 "] m/s^2 (no cell skipped at rest)");
+  else if (!scene_.run.skip_at_rest)
+    e.push_back("skipping at rest: off (every cell and parcel computed every step)");
+  else if (scene_.run.rest_tolerance > 0.0)
+    e.push_back("skipping at rest: within a relative " + fmt_number(scene_.run.rest_tolerance) +
+                " of the resting state (also skips the rounding noise ahead of a shock; results change at that level)");
+  else
+    e.push_back("skipping at rest: exact (bitwise the same results as without)");
   if (!scene_.particles.enabled) {
     e.push_back("particles: none (gas only)");
     return e;

@@ -167,3 +167,17 @@ TEST(Scene, OneNarrowCellAtAWallPutsCellCentresOnTheNodeCentredPoints) {
   two.cells_below = 2;
   EXPECT_THROW(build_axis_nodes(two), std::invalid_argument);
 }
+
+TEST(Scene, RestToleranceIsCheckedAndNamed) {
+  EXPECT_EQ(parse_scene(kMinimal, "scene.toml").run.rest_tolerance, 0.0);  // exact by default
+  EXPECT_DOUBLE_EQ(parse_scene(kMinimal, "scene.toml", {"run.rest_tolerance=1e-10"}).run.rest_tolerance, 1e-10);
+  for (const char* bad : {"run.rest_tolerance=1e-3", "run.rest_tolerance=-1e-12"}) {
+    const std::string e = error_of(kMinimal, {bad});
+    EXPECT_NE(e.find("run.rest_tolerance"), std::string::npos) << e;
+  }
+  // A tolerance widens what skipping counts as resting: without skipping it means nothing.
+  const std::string e = error_of(kMinimal, {"run.rest_tolerance=1e-10", "run.skip_at_rest=false"});
+  EXPECT_NE(e.find("run.rest_tolerance"), std::string::npos) << e;
+  EXPECT_NE(e.find("skip_at_rest"), std::string::npos) << e;
+  EXPECT_EQ(parse_scene(kMinimal, "scene.toml", {"run.skip_at_rest=false"}).run.rest_tolerance, 0.0);
+}

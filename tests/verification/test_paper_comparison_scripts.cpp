@@ -96,8 +96,12 @@ TEST(PaperComparisonScripts, MeasureAReducedPaperRunAsTheCodeDefinesIt) {
     EXPECT_TRUE(std::isnan(d01)) << json;
   } else {
     EXPECT_EQ(d01, delay) << json;
-    if (!std::isnan(d005)) EXPECT_LE(d005, d01) << json;
-    if (!std::isnan(d02)) EXPECT_LE(d01, d02) << json;
+    if (!std::isnan(d005)) {
+      EXPECT_LE(d005, d01) << json;
+    }
+    if (!std::isnan(d02)) {
+      EXPECT_LE(d01, d02) << json;
+    }
   }
   // The first upward contact comes no later and is no larger than the largest one.
   const double first_up = json_number(json, "contact_first_up_10us_uN");
