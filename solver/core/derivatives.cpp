@@ -90,12 +90,13 @@ double axis_derivative(const Axis& a, int k, At at) {
 
 }  // namespace
 
-void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out) {
+void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out, int i1) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
-#pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
+  i1 = std::min(i1, g.nx());
+#pragma omp parallel for schedule(static) if ((j1 - j0) * i1 >= 32768)
   for (int j = j0; j < j1; ++j) {
-    for (int i = 0; i < g.nx(); ++i) {
+    for (int i = 0; i < i1; ++i) {
       const double dvdx = axis_derivative(g.x(), i, [&](int m) { return v(m, j); });
       const double dudy = axis_derivative(g.y(), j, [&](int m) { return u(i, m); });
       out(i, j) = dvdx - dudy;
@@ -103,12 +104,13 @@ void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j
   }
 }
 
-void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy) {
+void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy, int i1) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
-#pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
+  i1 = std::min(i1, g.nx());
+#pragma omp parallel for schedule(static) if ((j1 - j0) * i1 >= 32768)
   for (int j = j0; j < j1; ++j) {
-    for (int i = 0; i < g.nx(); ++i) {
+    for (int i = 0; i < i1; ++i) {
       dfdx(i, j) = axis_derivative(g.x(), i, [&](int m) { return f(m, j); });
       dfdy(i, j) = axis_derivative(g.y(), j, [&](int m) { return f(i, m); });
     }

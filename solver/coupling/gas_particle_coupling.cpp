@@ -74,9 +74,9 @@ void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1) {
   }
 }
 
-/// Zeroes rows [0, rows) of the interior of f.
-void clear_rows(const Grid2D& g, Field2D& f, int rows) {
-  const int nx = g.nx(), n_rows = std::min(rows, g.ny());
+/// Zeroes columns [0, columns) of rows [0, rows) of the interior of f.
+void clear_rows(const Grid2D& g, Field2D& f, int rows, int columns) {
+  const int nx = std::min(columns, g.nx()), n_rows = std::min(rows, g.ny());
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(n_rows) * nx >= kParallelParcels)
   for (int j = 0; j < n_rows; ++j)
     for (int i = 0; i < nx; ++i) f(i, j) = 0.0;
@@ -104,6 +104,7 @@ void GasParticleCoupling::restore_carried_state(const CarriedState& s) {
   alpha_p_.raw() = s.alpha_p;
   rows_touched_ = s.rows_touched;
   stencil_dem_steps_ = -1;  // the parcels were replaced: make the stencils anew
+  last_reach_ = grid_.nx() - 1;  // and deposit into every column once
 }
 
 GasParticleCoupling::~GasParticleCoupling() = default;
@@ -130,30 +131,86 @@ void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j
   j1 = std::min(grid_.ny(), grid_.y().locate(ymax) + 3);
 }
 
-void GasParticleCoupling::update_stencils(const ParcelSystem& parcels) {
-  if (stencil_dem_steps_ == parcels.steps() && stencils_.size() == parcels.size()) return;
-  const std::size_t n = parcels.size();
-  stencils_.resize(n);
-  const double w = cfg_.influence_width;
-#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
-  for (std::size_t k = 0; k < n; ++k) stencils_[k] = deposit_stencil(grid_, parcels.x[k], parcels.y[k], w);
-  stencil_dem_steps_ = parcels.steps();
-  scatter_.plan(stencils_, grid_.nx(), kParallelParcels);
+bool GasParticleCoupling::stencils_need_all(const ParcelSystem& parcels) const {
+  return stencil_dem_steps_ < 0 || stencils_.size() != parcels.size() ||
+         parcels.data_permutations() != stencil_permutations_;
 }
 
-void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
+void GasParticleCoupling::update_stencils(const ParcelSystem& parcels, std::size_t count) {
+  const bool all = stencils_need_all(parcels);
+  if (!all && stencil_dem_steps_ == parcels.steps()) return;  // no DEM step since: current
+  const std::size_t n = parcels.size();
+  // Parcels from `count` on did not move since their stencils were made (the caller's count
+  // covers every parcel stepped since), and no re-sort moved them to other indices.
+  const std::size_t end = all ? n : std::min(count, n);
+  stencils_.resize(n);
+  const double w = cfg_.influence_width;
+#pragma omp parallel for schedule(static) if (end >= kParallelParcels)
+  for (std::size_t k = 0; k < end; ++k) stencils_[k] = deposit_stencil(grid_, parcels.x[k], parcels.y[k], w);
+  stencil_dem_steps_ = parcels.steps();
+  stencil_permutations_ = parcels.data_permutations();
+  planned_parcels_ = 0;  // the deposit plan was for the old stencils
+}
+
+void GasParticleCoupling::plan_scatter(std::size_t count) {
+  // A plan over more parcels serves too (the passes skip the columns they do not fill).
+  if (planned_parcels_ >= count && planned_parcels_ > 0) return;
+  scatter_.plan(stencils_, count, grid_.nx(), kParallelParcels);
+  planned_parcels_ = count;
+}
+
+int GasParticleCoupling::deposit_column_bound(double x) const {
+  // A stencil's square [x0, x0 + w] with x0 >= x - w/2 clipped at the start (grid_transfer.cpp).
+  const double right = std::max(x + 0.5 * std::max(cfg_.influence_width, 0.0), grid_.x().start() + cfg_.influence_width);
+  return std::min(grid_.nx() - 1, grid_.x().locate(right) + 1);
+}
+
+std::size_t GasParticleCoupling::parcels_reaching(const ParcelSystem& ps, int column) const {
+  const std::size_t n = ps.size();
+  // Near the right end a clipped square reaches further left than x - w/2: take all.
+  if (column >= grid_.nx() - 2) return n;
+  const double half = 0.5 * std::max(cfg_.influence_width, 0.0);
+  const double face = grid_.x().face(column + 1);
+  const double* x = ps.x.data();
+  std::size_t last = 0;
+#pragma omp parallel for schedule(static) reduction(max : last) if (n >= kParallelParcels)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (x[k] - half <= face) last = std::max(last, k + 1);
+  }
+  return last;
+}
+
+void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels, std::size_t stepped, double x_before) {
   int j0 = 0, j1 = 0;
   row_range(parcels, j0, j1);
   const int clear_to = std::max(rows_touched_, j1);
-  clear_rows(grid_, alpha_p_, clear_to);
   rows_touched_ = j1;
   cleared_to_ = clear_to;
-  update_stencils(parcels);
+  // Only columns [0, C] can change: those the parcels stepped this step reached before and
+  // after it, and those the last deposit changed (their sources go back to zero). Beyond C
+  // every cell's parcels rested and kept their order, so its sums are the ones it holds. A
+  // re-sort, or no stencils yet, makes everything anew.
+  int reach = grid_.nx() - 1;
+  if (!stencils_need_all(parcels) && stepped < parcels.size()) {
+    double x_after = -std::numeric_limits<double>::infinity();
+    const double* x = parcels.x.data();
+#pragma omp parallel for schedule(static) reduction(max : x_after) if (stepped >= kParallelParcels)
+    for (std::size_t k = 0; k < stepped; ++k) x_after = std::max(x_after, x[k]);
+    reach = stepped == 0 ? 0 : deposit_column_bound(std::max(x_before, x_after));
+  }
+  const int c = std::min(std::max(reach, last_reach_), grid_.nx() - 1);
+  last_reach_ = reach;
+  deposit_columns_ = c;
+  deposit_parcels_ = parcels_reaching(parcels, c);
+  clear_rows(grid_, alpha_p_, clear_to, c + 1);
+  update_stencils(parcels, deposit_parcels_);
+  plan_scatter(deposit_parcels_);
   // Each cell sums its parcels in parcel order whatever the thread count (ParallelDeposit).
   const double* n_real = parcels.n_real.data();
   scatter_.run(stencils_, [&](std::size_t k, int m) {
     const DepositStencil& d = stencils_[k];
     const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
+    if (i > c) return;
     const double volume = n_real[k] * particle_volume_;  // eq. (12), per metre of depth
     alpha_p_(i, j) += d.fraction[static_cast<std::size_t>(m)] * volume / grid_.area(i, j);
   });
@@ -204,7 +261,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   parcels.set_activity_column(col_.active);
   parcels.build_neighbours_if_due();
 
-  deposit_alpha(parcels);
+  deposit_alpha(parcels, parcels.size(), -std::numeric_limits<double>::infinity());
   if (!cfg_.two_way) return;
   for (int j = 0; j < grid_.ny(); ++j)
     for (int i = 0; i < grid_.nx(); ++i) alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
@@ -213,14 +270,24 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
 
 void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std::size_t active) {
   const GasPrimitives g = gas.primitives();
-  int j0 = 0, j1 = 0;
-  row_range(ps, j0, j1);
+  // The derivatives are needed where the sampled parcels' quads read them: their rows and
+  // columns, two cells of margin (the quad and the 3-point stencils).
+  int j0 = 0, j1 = 0, i1 = grid_.nx();
+  if (active == ps.size()) {
+    row_range(ps, j0, j1);
+  } else if (active > 0) {
+    j0 = std::max(0, grid_.y().locate(active_y_min_) - 2);
+    j1 = std::min(grid_.ny(), grid_.y().locate(active_y_max_) + 3);
+    i1 = std::min(grid_.nx(), grid_.x().locate(active_x_max_) + 3);
+  } else {
+    i1 = 0;
+  }
   if (needs_vorticity()) {
-    vorticity_z_rows(grid_, *g.u, *g.v, j0, j1, vorticity_);
+    vorticity_z_rows(grid_, *g.u, *g.v, j0, j1, vorticity_, i1);
     copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
   }
   if (cfg_.pressure_force) {
-    gradient_rows(grid_, *g.p, j0, j1, dpdx_, dpdy_);
+    gradient_rows(grid_, *g.p, j0, j1, dpdx_, dpdy_, i1);
     copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
     copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
   }
@@ -289,8 +356,12 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
                                                 std::size_t active) {
   int j0 = 0, j1 = 0;
   row_range(ps, j0, j1);
-  for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) clear_rows(grid_, *f, j1);
-  update_stencils(ps);
+  update_stencils(ps, ps.size());  // current since the last deposit, unless there was none
+  // The stepped parcels read the cells of columns [0, c]; those sum every parcel reaching them.
+  const int c = active < ps.size() ? (active == 0 ? -1 : deposit_column_bound(active_x_max_)) : grid_.nx() - 1;
+  const std::size_t reaching = c < 0 ? 0 : parcels_reaching(ps, c);
+  for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) clear_rows(grid_, *f, j1, c + 1);
+  plan_scatter(reaching);
   const double* K_raw = ps.column(col_.drag_raw).data();
   const double* H_raw = ps.column(col_.heat_raw).data();
   double* K = ps.column(col_.drag).data();
@@ -303,6 +374,7 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
   scatter_.run(stencils_, [&](std::size_t k, int m) {
     const DepositStencil& st = stencils_[k];
     const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
+    if (i > c) return;
     const double f = st.fraction[static_cast<std::size_t>(m)];
     cell_drag_(i, j) += f * (n_real[k] * K_raw[k]);
     cell_heat_(i, j) += f * (n_real[k] * H_raw[k]);
@@ -311,7 +383,7 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
   });
   const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
   const GasPrimitives g = gas.primitives();
-  const int nx = grid_.nx();
+  const int nx = c + 1;
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(j1) * nx >= kParallelParcels)
   for (int j = 0; j < j1; ++j) {
     for (int i = 0; i < nx; ++i) {
@@ -362,17 +434,21 @@ void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
   throw NumericalFailure(m.str());
 }
 
-void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt) {
-  deposit_alpha(ps);  // also makes the stencils at the new positions
+void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt, std::size_t stepped,
+                                           double x_before) {
+  deposit_alpha(ps, stepped, x_before);  // also makes the stencils at the new positions
   last_dt_ = dt;
   if (!cfg_.two_way) return;
   const double* jx = ps.column(col_.impulse_x).data();
   const double* jy = ps.column(col_.impulse_y).data();
   const double* work = ps.column(col_.work).data();
   const double* heat = ps.column(col_.heat).data();
-  clear_rows(grid_, src_x_, rows_touched_);
-  clear_rows(grid_, src_y_, rows_touched_);
-  clear_rows(grid_, src_e_, rows_touched_);
+  // Columns beyond deposit_columns_ had no source last step and have none now (only stepped
+  // parcels exchange anything).
+  const int columns = deposit_columns_ + 1;
+  clear_rows(grid_, src_x_, rows_touched_, columns);
+  clear_rows(grid_, src_y_, rows_touched_, columns);
+  clear_rows(grid_, src_e_, rows_touched_, columns);
   const double* n_real = ps.n_real.data();
   scatter_.run(stencils_, [&](std::size_t k, int m) {
     const double energy = work[k] + heat[k];
@@ -380,13 +456,14 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
     if (jx[k] == 0.0 && jy[k] == 0.0 && energy == 0.0) return;
     const DepositStencil& d = stencils_[k];
     const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
+    if (i >= columns) return;
     const double w = d.fraction[static_cast<std::size_t>(m)] * n_real[k] / (grid_.area(i, j) * dt);
     src_x_(i, j) += w * jx[k];
     src_y_(i, j) += w * jy[k];
     src_e_(i, j) += w * energy;
   });
   const int rows = rows_touched_;
-  const int nx = grid_.nx();
+  const int nx = columns;
   Field2D& sx = gas.source(1);
   Field2D& sy = gas.source(2);
   Field2D& se = gas.source(3);
@@ -491,8 +568,22 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       limit = last;
     }
   }
-#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
-  for (std::size_t k = 0; k < n; ++k) active[k] = k < limit ? 1.0 : 0.0;
+  // Where the stepped parcels are: the passes of this step need only the cells they reach.
+  double x_max = -std::numeric_limits<double>::infinity(), y_min = grid_.y().end(), y_max = grid_.y().start();
+  const double* px = ps.x.data();
+  const double* py = ps.y.data();
+#pragma omp parallel for schedule(static) reduction(max : x_max, y_max) reduction(min : y_min) if (n >= kParallelParcels)
+  for (std::size_t k = 0; k < n; ++k) {
+    active[k] = k < limit ? 1.0 : 0.0;
+    if (k < limit) {
+      x_max = std::max(x_max, px[k]);
+      y_min = std::min(y_min, py[k]);
+      y_max = std::max(y_max, py[k]);
+    }
+  }
+  active_x_max_ = x_max;
+  active_y_min_ = y_min;
+  active_y_max_ = y_max;
   last_active_ = limit;
   return limit;
 }
@@ -508,10 +599,11 @@ void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double 
     const ScopedTimer t(timings_.relief);
     stiff_exchange_relief(gas, parcels, dt, active);
   }
+  const double x_before = active_x_max_;
   last_substeps_ = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);
   check_parcels(parcels);
-  deposit_exchange(gas, parcels, dt);
+  deposit_exchange(gas, parcels, dt, active, x_before);
 }
 
 }  // namespace dustlift

@@ -11,6 +11,7 @@
 //     parcels receive; move the gas to the new porosity (GasSolver::change_porosity).
 // Every per-parcel quantity lives in columns of the ParcelSystem (parcel order); one deposit
 // stencil per parcel per step serves every deposit.
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -118,9 +119,23 @@ class GasParticleCoupling {
   void sample_gas(const GasSolver& gas, ParcelSystem& parcels, std::size_t active);
   /// Deposit stencils at the current positions (one per parcel, parcel order), unless they
   /// are current (no DEM step since they were made).
-  void update_stencils(const ParcelSystem& parcels);
-  void deposit_alpha(const ParcelSystem& parcels);
-  void deposit_exchange(GasSolver& gas, const ParcelSystem& parcels, double dt);
+  /// Deposit stencils at the current positions (one per parcel, parcel order) of parcels
+  /// [0, count), unless there was no DEM step since they were made; all of them when a re-sort
+  /// permuted the parcels or there are none yet (stencils_need_all). The caller's count must
+  /// cover every parcel stepped since: the others did not move.
+  void update_stencils(const ParcelSystem& parcels, std::size_t count);
+  bool stencils_need_all(const ParcelSystem& parcels) const;
+  /// Plans scatter_ over parcels [0, count) of the current stencils (or keeps a plan of as many).
+  void plan_scatter(std::size_t count);
+  /// The last grid column a deposit stencil of a parcel at x <= this x can reach (+1 margin).
+  int deposit_column_bound(double x) const;
+  /// 1 + the last parcel index whose stencil may reach a column <= `column` (all parcels
+  /// from the first up to it: a superset of the parcels reaching those columns).
+  std::size_t parcels_reaching(const ParcelSystem& parcels, int column) const;
+  /// The alpha_p deposit; `stepped` parcels (from the first) moved this step, the farthest
+  /// of them started at x_before: columns beyond what they reach keep their sums.
+  void deposit_alpha(const ParcelSystem& parcels, std::size_t stepped, double x_before);
+  void deposit_exchange(GasSolver& gas, const ParcelSystem& parcels, double dt, std::size_t stepped, double x_before);
   void check_parcels(const ParcelSystem& parcels) const;
   void row_range(const ParcelSystem& parcels, int& j0, int& j1) const;
 
@@ -141,6 +156,12 @@ class GasParticleCoupling {
   std::vector<DepositStencil> stencils_;  ///< parcel order, at the positions after the last DEM step
   ParallelDeposit scatter_;               ///< planned with the stencils
   long long stencil_dem_steps_ = -1;      ///< ParcelSystem::steps() when they were made
+  long long stencil_permutations_ = -1;   ///< ParcelSystem::data_permutations() then
+  int last_reach_ = std::numeric_limits<int>::max();  ///< last column the last step's stepped parcels reached
+  int deposit_columns_ = 0;               ///< the last deposit recomputed columns [0, deposit_columns_]
+  std::size_t deposit_parcels_ = 0;       ///< ... from parcels [0, deposit_parcels_)
+  std::size_t planned_parcels_ = 0;       ///< scatter_ is planned over [0, planned_parcels_) (0: no plan)
+  double active_x_max_ = 0.0, active_y_min_ = 0.0, active_y_max_ = 0.0;  ///< of this step's stepped parcels
   int rows_touched_ = 0;  ///< deposit rows [0, rows_touched_) to clear next time
   int cleared_to_ = 0;    ///< rows the last deposit cleared (they may have changed)
   int last_substeps_ = 0;        ///< DEM sub-steps of the last advance()

@@ -19,9 +19,10 @@ namespace dustlift {
 
 class ParallelDeposit {
  public:
-  /// Plans the chunks for these stencils (parcel order) on a grid of nx columns.
-  void plan(const std::vector<DepositStencil>& stencils, int nx, std::size_t parallel_minimum) {
-    const std::size_t n = stencils.size();
+  /// Plans the chunks for the first `count` of these stencils (parcel order) on a grid of
+  /// nx columns: run() then visits those parcels only.
+  void plan(const std::vector<DepositStencil>& stencils, std::size_t count, int nx, std::size_t parallel_minimum) {
+    const std::size_t n = std::min(count, stencils.size());
     const int threads = n >= parallel_minimum ? std::max(1, omp_get_max_threads()) : 1;
     chunk_start_.resize(static_cast<std::size_t>(threads) + 1);
     for (int c = 0; c <= threads; ++c) {

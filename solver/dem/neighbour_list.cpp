@@ -80,6 +80,7 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
     for (std::size_t i = 0; i < n; ++i) old_index_[i] = static_cast<std::int32_t>(i);
     return;
   }
+  ++data_permutations_;
   for_each_permuted_column([this](std::vector<double>& v) { permute(v, order_, scratch_d_); });
   permute(id, order_, scratch_i_);
   scratch_wall_.resize(n * kWallCount);

@@ -130,6 +130,9 @@ class ParcelSystem {
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long neighbour_rebuilds() const { return rebuilds_; }
+  /// How often the parcel data were re-sorted (every column permuted) since construction:
+  /// parcel indices are stable between two of them.
+  long long data_permutations() const { return data_permutations_; }
   /// Parcel-sub-steps computed (sub-steps times the parcels stepped in each).
   long long parcel_substeps() const { return parcel_substeps_; }
   /// Wall seconds spent in the contact pass, the integration and the neighbour rebuilds.
@@ -242,6 +245,7 @@ class ParcelSystem {
   double time_ = 0.0;
   long long steps_ = 0;
   long long rebuilds_ = 0;
+  long long data_permutations_ = 0;
   long long parcel_substeps_ = 0;
 
   // Derived per parcel, permuted along with the state.

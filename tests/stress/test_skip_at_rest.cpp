@@ -9,10 +9,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "solver/coupling/gas_particle_coupling.hpp"
+#include "solver/coupling/grid_transfer.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/sim/simulation.hpp"
 
@@ -66,6 +69,31 @@ void expect_bitwise_equal(Simulation& a, Simulation& b, const char* what) {
   EXPECT_EQ(p.nbr_index, q.nbr_index) << what;
 }
 
+/// The coupling deposits only into the columns that the stepped parcels reach (columns beyond
+/// keep their sums). Its alpha_p must be, to the last bit, a deposit of every parcel from
+/// scratch in parcel order (eq. 12 over grid_transfer's stencils).
+void expect_alpha_p_is_a_full_deposit(const Simulation& sim, const char* what) {
+  const Grid2D& g = sim.grid();
+  const ParcelSystem& p = *sim.parcels();
+  const double volume = std::numbers::pi / 6.0 * std::pow(sim.scene().particles.particle_diameter, 3);
+  Field2D full(g);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const DepositStencil d = deposit_stencil(g, p.x[k], p.y[k], sim.scene().coupling.influence_width);
+    for (int m = 0; m < d.count; ++m) {
+      const auto mm = static_cast<std::size_t>(m);
+      full(d.i[mm], d.j[mm]) += d.fraction[mm] * (p.n_real[k] * volume) / g.area(d.i[mm], d.j[mm]);
+    }
+  }
+  const Field2D& alpha = sim.coupling()->alpha_p();
+  int differ = 0;
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) {
+      const double mine = alpha(i, j), fresh = full(i, j);
+      differ += std::memcmp(&mine, &fresh, sizeof(double)) != 0;
+    }
+  EXPECT_EQ(differ, 0) << what << ": cells whose alpha_p is not the full deposit's";
+}
+
 }  // namespace
 
 TEST(SkipAtRest, ReducedPaperSceneIsBitwiseTheSameWithSkippingOnAndOff) {
@@ -77,6 +105,7 @@ TEST(SkipAtRest, ReducedPaperSceneIsBitwiseTheSameWithSkippingOnAndOff) {
   ASSERT_GE(on->parcels()->size(), 4096u);
   expect_bitwise_equal(*on, *off, "skip on vs off");
   expect_bitwise_equal(*on, *on_one_thread, "skip on, 2 vs 1 threads");
+  expect_alpha_p_is_a_full_deposit(*on, "exact skipping");
   const double gas_share = static_cast<double>(on->gas().cell_updates()) / static_cast<double>(off->gas().cell_updates());
   const double parcel_share =
       static_cast<double>(on->parcels()->parcel_substeps()) / static_cast<double>(off->parcels()->parcel_substeps());
@@ -101,6 +130,7 @@ TEST(SkipAtRest, ToleranceSkipsTheNoiseAheadOfTheShockAndChangesOnlyNoise) {
   auto tolerant_one_thread = run(true, 1, kSteps, kTolerance);
   omp_set_num_threads(2);
   expect_bitwise_equal(*tolerant, *tolerant_one_thread, "tolerant skipping, 2 vs 1 threads");
+  expect_alpha_p_is_a_full_deposit(*tolerant, "tolerant skipping");
   const auto effects = tolerant->enabled_effects();
   const bool listed = std::any_of(effects.begin(), effects.end(), [](const std::string& e) {
     return e.find("skipping at rest: within a relative 1e-10") != std::string::npos;
