@@ -524,8 +524,28 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       rest_p_ = resting_.p;
       rest_T_ = resting_.T;
     }
+    // The gas over a parcel's interpolation quad and derivative stencils (two cells each way)
+    // rests when every row j-2..j+2 (j its row) rests from column i-2 on (i its column), that
+    // is, when x >= face(first_resting + 2) of each of those rows: one threshold per row
+    // window, and one for all rows, so that most resting parcels need no locate at all.
     const int* first_resting = resting_.first_resting.data();
-    const int ny = grid_.ny();
+    const int ny = grid_.ny(), nx = grid_.nx();
+    const Axis& ax = grid_.x();
+    auto row_threshold = [&](int r) {
+      const int column = first_resting[r] + 2;  // locate(x) >= column <=> x >= face(column)
+      if (column <= 0) return -std::numeric_limits<double>::infinity();
+      if (column >= nx) return std::numeric_limits<double>::infinity();
+      return ax.face(column);
+    };
+    rest_x_threshold_.resize(static_cast<std::size_t>(ny));
+    double all_rows = -std::numeric_limits<double>::infinity();
+    for (int j = 0; j < ny; ++j) {
+      double t = -std::numeric_limits<double>::infinity();
+      for (int r = std::max(j - 2, 0); r <= std::min(j + 2, ny - 1); ++r) t = std::max(t, row_threshold(r));
+      rest_x_threshold_[static_cast<std::size_t>(j)] = t;
+      all_rows = std::max(all_rows, t);
+    }
+    const double* threshold = rest_x_threshold_.data();
     const bool valid = resting_.valid;
     const double T_ref = resting_.T, dT = resting_.dT, du = resting_.du;
     double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
@@ -535,12 +555,7 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
                                 ps.radius[k],     ps.contact_fx[k], ps.contact_fy[k],
                                 ps.contact_torque[k], ps.mass[k] / ps.n_real[k], ps.inertia[k] / ps.n_real[k]};
       bool rests = valid && parcel_still(motion, du, dt) && std::abs(ps.temperature[k] - T_ref) <= dT;
-      if (rests) {
-        // The gas over the parcel's interpolation quad and derivative stencils (two cells each
-        // way) rests at the reference.
-        const int i = grid_.x().locate(ps.x[k]), j = grid_.y().locate(ps.y[k]);
-        for (int r = std::max(j - 2, 0); r <= std::min(j + 2, ny - 1) && rests; ++r) rests = first_resting[r] <= i - 2;
-      }
+      if (rests && !(ps.x[k] >= all_rows)) rests = ps.x[k] >= threshold[grid_.y().locate(ps.y[k])];
       rest_steps[k] = rests ? rest_steps[k] + 1.0 : 0.0;
       // Two steps: the last step was then a full step at rest, so its stored force parts and
       // samples are exactly what this step would give.

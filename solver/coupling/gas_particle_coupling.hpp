@@ -170,6 +170,7 @@ class GasParticleCoupling {
   bool skip_resting_ = true;
   GasSolver::RestingGas resting_;
   double rest_p_ = 0.0, rest_T_ = 0.0;  ///< the reference the rest_steps counts refer to
+  std::vector<double> rest_x_threshold_;  ///< per row: the gas over parcels at x >= it rests (plan_active_parcels)
   std::size_t last_active_ = 0;
 };
 
