@@ -305,7 +305,10 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   double* H = ps.column(col_.heat_coef).data();
   const double d = dem_cfg_.particle_diameter;
   const bool vort = needs_vorticity();
-#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
+  // Dynamic chunks: parcels in disturbed gas cost several times those in uniform gas (whose
+  // stencils are uniform and whose drag needs no logarithm), and they sit at one end of the
+  // x-ordered parcels. Each parcel's result is its own: any schedule gives the same bits.
+#pragma omp parallel for schedule(dynamic, 512) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
     const InterpolationStencil st = interpolation_stencil(grid_, ps.x[k], ps.y[k], cfg_.interpolation);
     GasSample s;

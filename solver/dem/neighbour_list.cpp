@@ -230,7 +230,7 @@ void ParcelSystem::rebuild_neighbours() {
 
   nbr_offset.resize(n + 1);
   nbr_offset[0] = 0;
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+#pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     std::int32_t count = 0;
     for_each_partner(i, [&](std::int32_t, int) { ++count; });
@@ -241,7 +241,7 @@ void ParcelSystem::rebuild_neighbours() {
   nbr_index.resize(slots);
   nbr_image.resize(slots);
   nbr_delta.resize(slots);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+#pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     std::int32_t k = nbr_offset[i];
     for_each_partner(i, [&](std::int32_t j, int image) {
