@@ -103,6 +103,8 @@ void GasParticleCoupling::restore_carried_state(const CarriedState& s) {
   }
   alpha_p_.raw() = s.alpha_p;
   rows_touched_ = s.rows_touched;
+  rest_p_ = s.rest_p;
+  rest_T_ = s.rest_T;
   stencil_dem_steps_ = -1;  // the parcels were replaced: make the stencils anew
   last_reach_ = grid_.nx() - 1;  // and deposit into every column once
 }
@@ -219,14 +221,18 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels, std::size_t
 
 void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   auto attach = [&](const char* name, const char* unit) { return parcels.attach_column({name, unit, false, false}); };
+  // Columns a later step reads for parcels it does not sample again (resting parcels: the
+  // relief's sums, the band filters' rotations, the rest counts) go into checkpoints, so that
+  // a restart continues bitwise also when skipping within run.rest_tolerance.
+  auto carried = [&](const char* name, const char* unit) { return parcels.attach_column({name, unit, true, false}); };
   col_.gas_u = attach("gas_u", "m/s");
   col_.gas_v = attach("gas_v", "m/s");
-  col_.gas_rotation = attach("gas_rotation", "rad/s");
+  col_.gas_rotation = carried("gas_rotation", "rad/s");
   col_.gas_T = attach("gas_temperature", "K");
-  col_.gas_p = attach("gas_pressure", "Pa");
-  col_.drag_raw = attach("drag_coefficient_sampled", "N s/m");
-  col_.heat_raw = attach("heat_coefficient_sampled", "W/K");
-  col_.rest_steps = attach("rest_steps", "1");
+  col_.gas_p = carried("gas_pressure", "Pa");
+  col_.drag_raw = carried("drag_coefficient_sampled", "N s/m");
+  col_.heat_raw = carried("heat_coefficient_sampled", "W/K");
+  col_.rest_steps = carried("rest_steps", "1");
   col_.active = attach("stepped", "1");
   col_.drag = attach("drag_coefficient", "N s/m");
   col_.magnus = attach("magnus_coefficient", "N s^2/m^2");
@@ -236,7 +242,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   col_.impulse_y = attach("exchange_impulse_y", "N s");
   col_.work = attach("exchange_work", "J");
   col_.heat = attach("exchange_heat", "J");
-  col_.relative_rotation = attach("relative_rotation", "rad/s");
+  col_.relative_rotation = carried("relative_rotation", "rad/s");
   forcing_.drag = cfg_.drag;
   forcing_.magnus = cfg_.magnus;
   forcing_.pressure = cfg_.pressure_force;

@@ -82,11 +82,15 @@ class GasParticleCoupling {
   /// What one advance() leaves for the next (for checkpoints): the deposited alpha_p
   /// (ghosts included; sampled at the start of the next step) and the rows it touched
   /// (cleared at the next deposit). Everything else is rebuilt within each step.
+  /// Also the resting reference the parcels' rest counts refer to (their counts and the
+  /// samples of resting parcels are parcel columns attached as checkpointed; a checkpoint
+  /// without them gives reference 0 and counts 0, which starts the counts anew).
   struct CarriedState {
     std::vector<double> alpha_p;
     int rows_touched = 0;
+    double rest_p = 0.0, rest_T = 0.0;
   };
-  CarriedState carried_state() const { return {alpha_p_.raw(), rows_touched_}; }
+  CarriedState carried_state() const { return {alpha_p_.raw(), rows_touched_, rest_p_, rest_T_}; }
   /// Throws std::invalid_argument when the field size or row count does not fit the grid.
   void restore_carried_state(const CarriedState& s);
 

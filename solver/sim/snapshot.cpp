@@ -1,5 +1,6 @@
 // Simulation::snapshot / restore: the state a bitwise continuation needs, by name.
 // What is (and is not) in it and why: docs/reliability.md.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -81,9 +82,13 @@ Snapshot Simulation::snapshot() const {
   s.i64["dem/needs_rebuild"] = {in.needs_rebuild ? 1 : 0};
   s.i64["dem/steps"] = {in.steps};
   s.i64["dem/rebuilds"] = {in.rebuilds};
+  for (std::size_t k = 0; k < p.attached_count(); ++k) {
+    if (p.attached_spec(k).checkpointed) s.f64["parcels/attached_" + p.attached_spec(k).name] = p.attached(k);
+  }
   const GasParticleCoupling::CarriedState c = coupling_->carried_state();
   s.f64["coupling/alpha_p"] = c.alpha_p;
   s.i64["coupling/rows_touched"] = {c.rows_touched};
+  s.f64["coupling/rest_reference"] = {c.rest_p, c.rest_T};
   return s;
 }
 
@@ -173,9 +178,26 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
     } catch (const std::invalid_argument& e) {
       throw SnapshotError(e.what());
     }
+    // Attached columns a restart needs; checkpoints from before they were kept have none,
+    // which leaves them zero (the rest counts then start anew: exact skipping is unaffected).
+    const bool has_attached = s.f64.count("coupling/rest_reference") != 0;
+    for (std::size_t k = 0; k < restored.attached_count(); ++k) {
+      if (!restored.attached_spec(k).checkpointed) continue;
+      const std::string name = "parcels/attached_" + restored.attached_spec(k).name;
+      if (has_attached) {
+        restored.attached(k) = snapshot_array(s.f64, name, n);
+      } else {
+        std::fill(restored.attached(k).begin(), restored.attached(k).end(), 0.0);
+      }
+    }
     GasParticleCoupling::CarriedState c;
     c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);
     c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
+    if (has_attached) {
+      const auto& ref = snapshot_array(s.f64, "coupling/rest_reference", 2);
+      c.rest_p = ref[0];
+      c.rest_T = ref[1];
+    }
     try {
       coupling_->restore_carried_state(c);
     } catch (const std::invalid_argument& e) {

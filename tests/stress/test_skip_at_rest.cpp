@@ -29,15 +29,19 @@ std::string tolerance_override(double tol) {
   return text;
 }
 
+const std::string kPaperScene = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock.toml";
+
+/// The paper's cells and physics on a 60 mm layer, the shock starting 1 mm upstream of it.
+std::vector<std::string> reduced_paper_overrides(bool skip, double rest_tolerance) {
+  return {"grid.x.start=-0.02",    "grid.x.end=0.06",          "grid.x.cells_below=20",
+          "particles.layer.x_max=0.06", "grid.y.end=0.012",    "grid.y.uniform_end=0.008",
+          "grid.y.cells_above=8",  "initial.position=-0.001",
+          std::string("run.skip_at_rest=") + (skip ? "true" : "false"), tolerance_override(rest_tolerance)};
+}
+
 std::unique_ptr<Simulation> run(bool skip, int threads, int steps, double rest_tolerance = 0.0) {
-  const std::string paper = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock.toml";
-  // The paper's cells and physics on a 60 mm layer, the shock starting 1 mm upstream of it.
-  const std::vector<std::string> reduced{"grid.x.start=-0.02",      "grid.x.end=0.06",
-                                         "grid.x.cells_below=20",   "particles.layer.x_max=0.06",
-                                         "grid.y.end=0.012",        "grid.y.uniform_end=0.008",
-                                         "grid.y.cells_above=8",    "initial.position=-0.001",
-                                         std::string("run.skip_at_rest=") + (skip ? "true" : "false"),
-                                         tolerance_override(rest_tolerance)};
+  const std::string paper = kPaperScene;
+  const std::vector<std::string> reduced = reduced_paper_overrides(skip, rest_tolerance);
   omp_set_num_threads(threads);
   auto sim = std::make_unique<Simulation>(load_scene(paper, reduced));
   for (int s = 0; s < steps; ++s) sim->advance(1.0);
@@ -131,6 +135,15 @@ TEST(SkipAtRest, ToleranceSkipsTheNoiseAheadOfTheShockAndChangesOnlyNoise) {
   omp_set_num_threads(2);
   expect_bitwise_equal(*tolerant, *tolerant_one_thread, "tolerant skipping, 2 vs 1 threads");
   expect_alpha_p_is_a_full_deposit(*tolerant, "tolerant skipping");
+  {
+    // A restart halfway continues bitwise: the rest counts, the reference they count against
+    // and the samples of resting parcels are in the checkpoint.
+    auto first_half = run(true, 2, kSteps / 2, kTolerance);
+    Simulation restarted(load_scene(kPaperScene, reduced_paper_overrides(true, kTolerance)));
+    restarted.restore(first_half->snapshot());
+    for (int s = kSteps / 2; s < kSteps; ++s) restarted.advance(1.0);
+    expect_bitwise_equal(*tolerant, restarted, "tolerant skipping, restarted halfway");
+  }
   const auto effects = tolerant->enabled_effects();
   const bool listed = std::any_of(effects.begin(), effects.end(), [](const std::string& e) {
     return e.find("skipping at rest: within a relative 1e-10") != std::string::npos;
