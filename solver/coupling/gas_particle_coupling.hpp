@@ -109,7 +109,8 @@ class GasParticleCoupling {
   /// interpolation and derivative stencil) would not change a bit, nor would anything it
   /// feeds, as long as nothing that moves can reach it within the step. The parcels after the
   /// last one that may move (or lies within reach of one) are left out of sampling and
-  /// sub-steps. Returns how many parcels, from the first, are stepped.
+  /// sub-steps. With run.rest_tolerance "at rest" is within the tolerance (rest_ranges.hpp:
+  /// parcel_still). Returns how many parcels, from the first, are stepped.
   std::size_t plan_active_parcels(const GasSolver& gas, ParcelSystem& parcels, double dt);
   /// Drag and heat exchange are stiff in a packed layer: the gas in a cell holds far less
   /// momentum and heat than its particles (mass loading ~ 700 at alpha_p = 0.59), so its

@@ -5,6 +5,8 @@
 // exactly from the well-balanced scheme (SLAU2 gives mass flux 0 and p~ = p to the last bit),
 // so its update changes no bit: skipping it gives bitwise the same run. Ahead of a shock the
 // gas is at rest and uniform; these ranges let a stage do only the work that changes something.
+// With run.rest_tolerance > 0 "rests" means within that tolerance of the reference (the
+// rounding noise ahead of the shock is skipped too; results change at that level).
 #include <cmath>
 
 namespace dustlift {

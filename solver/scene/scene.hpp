@@ -23,7 +23,8 @@ struct RunConfig {
   bool skip_at_rest = true;
   /// 0: skip only what rests exactly. > 0 (at most 1e-6): a gas cell rests when |u|, |v| <=
   /// tol sqrt(p/rho) and p, T are within tol (relative) of the resting state, and a parcel
-  /// when it is exactly still in such gas at that temperature: the rounding noise that runs
+  /// in such gas when its speed, spin and the speed its contact loads would add within a step
+  /// are below that velocity and its temperature within tol: the rounding noise that runs
   /// ahead of a shock is then skipped too. Changes results at the level of that noise.
   double rest_tolerance = 0.0;
 };
