@@ -182,7 +182,7 @@ std::size_t GasParticleCoupling::parcels_reaching(const ParcelSystem& ps, int co
   return last;
 }
 
-void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels, std::size_t stepped, double x_before) {
+void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
   int j0 = 0, j1 = 0;
   row_range(parcels, j0, j1);
   const int clear_to = std::max(rows_touched_, j1);
@@ -192,21 +192,22 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels, std::size_t
   // after it, and those the last deposit changed (their sources go back to zero). Beyond C
   // every cell's parcels rested and kept their order, so its sums are the ones it holds. A
   // re-sort, or no stencils yet, makes everything anew.
+  const std::size_t stepped = last_active_;
   int reach = grid_.nx() - 1;
   if (!stencils_need_all(parcels) && stepped < parcels.size()) {
     double x_after = -std::numeric_limits<double>::infinity();
     const double* x = parcels.x.data();
 #pragma omp parallel for schedule(static) reduction(max : x_after) if (stepped >= kParallelParcels)
     for (std::size_t k = 0; k < stepped; ++k) x_after = std::max(x_after, x[k]);
-    reach = stepped == 0 ? 0 : deposit_column_bound(std::max(x_before, x_after));
+    reach = stepped == 0 ? 0 : deposit_column_bound(std::max(active_x_max_, x_after));
   }
   const int c = std::min(std::max(reach, last_reach_), grid_.nx() - 1);
   last_reach_ = reach;
   deposit_columns_ = c;
-  deposit_parcels_ = parcels_reaching(parcels, c);
+  const std::size_t reaching = parcels_reaching(parcels, c);
   clear_rows(grid_, alpha_p_, clear_to, c + 1);
-  update_stencils(parcels, deposit_parcels_);
-  plan_scatter(deposit_parcels_);
+  update_stencils(parcels, reaching);
+  plan_scatter(reaching);
   // Each cell sums its parcels in parcel order whatever the thread count (ParallelDeposit).
   const double* n_real = parcels.n_real.data();
   scatter_.run(stencils_, [&](std::size_t k, int m) {
@@ -267,7 +268,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   parcels.set_activity_column(col_.active);
   parcels.build_neighbours_if_due();
 
-  deposit_alpha(parcels, parcels.size(), -std::numeric_limits<double>::infinity());
+  deposit_alpha(parcels);  // no stencils yet: every column
   if (!cfg_.two_way) return;
   for (int j = 0; j < grid_.ny(); ++j)
     for (int i = 0; i < grid_.nx(); ++i) alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
@@ -443,9 +444,8 @@ void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
   throw NumericalFailure(m.str());
 }
 
-void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt, std::size_t stepped,
-                                           double x_before) {
-  deposit_alpha(ps, stepped, x_before);  // also makes the stencils at the new positions
+void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt) {
+  deposit_alpha(ps);  // also makes the stencils at the new positions
   last_dt_ = dt;
   if (!cfg_.two_way) return;
   const double* jx = ps.column(col_.impulse_x).data();
@@ -560,10 +560,13 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
     double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelParcels)
     for (std::size_t k = 0; k < n; ++k) {
-      const ParcelMotion motion{ps.vx[k],         ps.vy[k],         ps.omega[k],
-                                ps.radius[k],     ps.contact_fx[k], ps.contact_fy[k],
-                                ps.contact_torque[k], ps.mass[k] / ps.n_real[k], ps.inertia[k] / ps.n_real[k]};
-      bool rests = valid && parcel_still(motion, du, dt) && std::abs(ps.temperature[k] - T_ref) <= dT;
+      bool rests = valid && std::abs(ps.temperature[k] - T_ref) <= dT;
+      if (rests) {
+        const ParcelMotion motion{ps.vx[k],         ps.vy[k],         ps.omega[k],
+                                  ps.radius[k],     ps.contact_fx[k], ps.contact_fy[k],
+                                  ps.contact_torque[k], ps.mass[k] / ps.n_real[k], ps.inertia[k] / ps.n_real[k]};
+        rests = parcel_still(motion, du, dt);
+      }
       if (rests && !(ps.x[k] >= all_rows)) rests = ps.x[k] >= threshold[grid_.y().locate(ps.y[k])];
       rest_steps[k] = rests ? rest_steps[k] + 1.0 : 0.0;
       // Two steps: the last step was then a full step at rest, so its stored force parts and
@@ -623,11 +626,10 @@ void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double 
     const ScopedTimer t(timings_.relief);
     stiff_exchange_relief(gas, parcels, dt, active);
   }
-  const double x_before = active_x_max_;
   last_substeps_ = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);
   check_parcels(parcels);
-  deposit_exchange(gas, parcels, dt, active, x_before);
+  deposit_exchange(gas, parcels, dt);
 }
 
 }  // namespace dustlift

@@ -122,8 +122,6 @@ class GasParticleCoupling {
   /// fast. Conservation is unaffected: the gas receives exactly what the parcels get.
   void stiff_exchange_relief(const GasSolver& gas, ParcelSystem& parcels, double dt, std::size_t active);
   void sample_gas(const GasSolver& gas, ParcelSystem& parcels, std::size_t active);
-  /// Deposit stencils at the current positions (one per parcel, parcel order), unless they
-  /// are current (no DEM step since they were made).
   /// Deposit stencils at the current positions (one per parcel, parcel order) of parcels
   /// [0, count), unless there was no DEM step since they were made; all of them when a re-sort
   /// permuted the parcels or there are none yet (stencils_need_all). The caller's count must
@@ -137,10 +135,11 @@ class GasParticleCoupling {
   /// 1 + the last parcel index whose stencil may reach a column <= `column` (all parcels
   /// from the first up to it: a superset of the parcels reaching those columns).
   std::size_t parcels_reaching(const ParcelSystem& parcels, int column) const;
-  /// The alpha_p deposit; `stepped` parcels (from the first) moved this step, the farthest
-  /// of them started at x_before: columns beyond what they reach keep their sums.
-  void deposit_alpha(const ParcelSystem& parcels, std::size_t stepped, double x_before);
-  void deposit_exchange(GasSolver& gas, const ParcelSystem& parcels, double dt, std::size_t stepped, double x_before);
+  /// The alpha_p deposit after the step planned by plan_active_parcels (the parcels
+  /// [0, last_active_) moved, the farthest of them from active_x_max_): columns beyond what
+  /// they reach keep their sums.
+  void deposit_alpha(const ParcelSystem& parcels);
+  void deposit_exchange(GasSolver& gas, const ParcelSystem& parcels, double dt);
   void check_parcels(const ParcelSystem& parcels) const;
   void row_range(const ParcelSystem& parcels, int& j0, int& j1) const;
 
@@ -164,7 +163,6 @@ class GasParticleCoupling {
   long long stencil_permutations_ = -1;   ///< ParcelSystem::data_permutations() then
   int last_reach_ = std::numeric_limits<int>::max();  ///< last column the last step's stepped parcels reached
   int deposit_columns_ = 0;               ///< the last deposit recomputed columns [0, deposit_columns_]
-  std::size_t deposit_parcels_ = 0;       ///< ... from parcels [0, deposit_parcels_)
   std::size_t planned_parcels_ = 0;       ///< scatter_ is planned over [0, planned_parcels_) (0: no plan)
   double active_x_max_ = 0.0, active_y_min_ = 0.0, active_y_max_ = 0.0;  ///< of this step's stepped parcels
   int rows_touched_ = 0;  ///< deposit rows [0, rows_touched_) to clear next time
