@@ -40,10 +40,8 @@ std::vector<std::string> reduced_paper_overrides(bool skip, double rest_toleranc
 }
 
 std::unique_ptr<Simulation> run(bool skip, int threads, int steps, double rest_tolerance = 0.0) {
-  const std::string paper = kPaperScene;
-  const std::vector<std::string> reduced = reduced_paper_overrides(skip, rest_tolerance);
   omp_set_num_threads(threads);
-  auto sim = std::make_unique<Simulation>(load_scene(paper, reduced));
+  auto sim = std::make_unique<Simulation>(load_scene(kPaperScene, reduced_paper_overrides(skip, rest_tolerance)));
   for (int s = 0; s < steps; ++s) sim->advance(1.0);
   return sim;
 }
