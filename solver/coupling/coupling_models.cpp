@@ -8,7 +8,7 @@
 namespace dustlift {
 namespace {
 
-class DragModel final : public CouplingModel {
+class DragModel final : public BatchedCouplingModel<DragModel> {
  public:
   explicit DragModel(const CouplingConfig& c) : compressible_(c.compressibility_correction), xi2_(c.volume_fraction) {}
   std::string description() const override {
@@ -23,7 +23,10 @@ class DragModel final : public CouplingModel {
     }
     return s;
   }
-  void coefficients(const GasSample& g, const ParcelAtSample& p, double slip, double, SubstepCoefficients& out) const override {
+  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
+    const GasSample& g = in.gas;
+    const ParcelAtSample& p = in.parcel;
+    const double slip = in.slip;
     const aero::GasAtParcel at{g.rho, {g.u, g.v}, g.mu, g.c, g.alpha_g};
     out.drag = aero::drag_coefficient(at, slip, p.diameter, compressible_, xi2_);
   }
@@ -33,7 +36,7 @@ class DragModel final : public CouplingModel {
   aero::VolumeFractionCorrection xi2_;
 };
 
-class MagnusModel final : public CouplingModel {
+class MagnusModel final : public BatchedCouplingModel<MagnusModel> {
  public:
   explicit MagnusModel(const CouplingConfig& c)
       : c_lm_(c.magnus_coefficient), lun_liu_(c.lun_liu), paper_(c.magnus_convention == aero::MagnusConvention::Paper) {}
@@ -43,7 +46,10 @@ class MagnusModel final : public CouplingModel {
       << (paper_ ? " (paper convention)" : " (standard convention)");
     return s.str();
   }
-  void coefficients(const GasSample& g, const ParcelAtSample& p, double, double re, SubstepCoefficients& out) const override {
+  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
+    const GasSample& g = in.gas;
+    const ParcelAtSample& p = in.parcel;
+    const double re = in.re;
     const double c_lm = c_lm_ * (lun_liu_ ? aero::lun_liu_factor(re) : 1.0);
     const double d = p.diameter;
     out.magnus = c_lm * std::numbers::pi / 8.0 * g.rho * d * d * d;  // aero::magnus_force / (w_r z x u_r)
@@ -54,21 +60,25 @@ class MagnusModel final : public CouplingModel {
   bool lun_liu_, paper_;
 };
 
-class PressureForceModel final : public CouplingModel {
+class PressureForceModel final : public BatchedCouplingModel<PressureForceModel> {
  public:
   std::string description() const override { return "pressure-gradient force -V_p grad p"; }
-  void coefficients(const GasSample& g, const ParcelAtSample& p, double, double, SubstepCoefficients& out) const override {
+  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
+    const GasSample& g = in.gas;
+    const ParcelAtSample& p = in.parcel;
     const Vec2 f = aero::pressure_force(p.diameter, {g.dpdx, g.dpdy});
     out.pressure_fx = f.x;
     out.pressure_fy = f.y;
   }
 };
 
-class RotationTorqueModel final : public CouplingModel {
+class RotationTorqueModel final : public BatchedCouplingModel<RotationTorqueModel> {
  public:
   explicit RotationTorqueModel(const CouplingConfig& c) : stokes_below_(c.torque_stokes_below) {}
   std::string description() const override { return "rotational friction torque (Dennis, Singh & Ingham 1980)"; }
-  void coefficients(const GasSample& g, const ParcelAtSample& p, double, double, SubstepCoefficients& out) const override {
+  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
+    const GasSample& g = in.gas;
+    const ParcelAtSample& p = in.parcel;
     // M = kappa w_r with kappa = M(w_r0) / w_r0 at the step's relative rotation (the torque is
     // odd in w_r); at w_r0 = 0 the Stokes slope pi mu d^3.
     const double d = p.diameter;
@@ -81,10 +91,13 @@ class RotationTorqueModel final : public CouplingModel {
   double stokes_below_;
 };
 
-class HeatTransferModel final : public CouplingModel {
+class HeatTransferModel final : public BatchedCouplingModel<HeatTransferModel> {
  public:
   std::string description() const override { return "heat transfer (Ranz-Marshall) and particle temperature"; }
-  void coefficients(const GasSample& g, const ParcelAtSample& p, double, double re, SubstepCoefficients& out) const override {
+  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
+    const GasSample& g = in.gas;
+    const ParcelAtSample& p = in.parcel;
+    const double re = in.re;
     // Q = pi d^2 (Nu lambda / d) (T_g - T_p) = H (T_g - T_p) (aero::heat_flow).
     out.heat = std::numbers::pi * p.diameter * g.lambda * aero::nusselt_ranz_marshall(re, g.mu * g.cp / g.lambda);
   }

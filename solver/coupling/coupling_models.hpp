@@ -9,6 +9,7 @@
 //   torque    kappa  M_rotation = kappa w_r       (Dennis et al., slope at the step's w_r)
 //   heat      H      Q = H (T_g - T_p)            (Ranz-Marshall)
 // Per REAL particle; the parcel's share is n_i times it (eqs. 13-15).
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,14 +42,32 @@ struct SubstepCoefficients {
   double heat = 0.0;                        ///< H, W/K
 };
 
+/// What the models read of one parcel: its gas, itself, slip = |u_g - v_p| and
+/// re = rho slip d / mu.
+struct ModelInput {
+  GasSample gas;
+  ParcelAtSample parcel;
+  double slip = 0.0, re = 0.0;
+};
+
 class CouplingModel {
  public:
   virtual ~CouplingModel() = default;
   /// One line for `dustlift info`.
   virtual std::string description() const = 0;
-  /// Adds this model's coefficient for one parcel; slip = |u_g - v_p|, re = rho slip d / mu.
-  virtual void coefficients(const GasSample& g, const ParcelAtSample& p, double slip, double re,
-                            SubstepCoefficients& out) const = 0;
+  /// Adds this model's coefficient for each of n parcels: one virtual call per batch, the
+  /// per-parcel formula (coefficients() of the model) inlined in its loop.
+  virtual void coefficients(const ModelInput* in, SubstepCoefficients* out, std::size_t n) const = 0;
+};
+
+/// The batch loop over a model's per-parcel `coefficients(const ModelInput&, SubstepCoefficients&)`.
+template <class Model>
+class BatchedCouplingModel : public CouplingModel {
+ public:
+  void coefficients(const ModelInput* in, SubstepCoefficients* out, std::size_t n) const final {
+    const Model& m = static_cast<const Model&>(*this);
+    for (std::size_t k = 0; k < n; ++k) m.coefficient(in[k], out[k]);
+  }
 };
 
 /// The active models, in Table 1's order.

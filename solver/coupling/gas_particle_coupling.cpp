@@ -1,6 +1,7 @@
 #include "solver/coupling/gas_particle_coupling.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -312,45 +313,59 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   double* H = ps.column(col_.heat_coef).data();
   const double d = dem_cfg_.particle_diameter;
   const bool vort = needs_vorticity();
-  // Dynamic chunks: parcels in disturbed gas cost several times those in uniform gas (whose
-  // stencils are uniform and whose drag needs no logarithm), and they sit at one end of the
-  // x-ordered parcels. Each parcel's result is its own: any schedule gives the same bits.
-#pragma omp parallel for schedule(dynamic, 512) if (n >= kParallelParcels)
-  for (std::size_t k = 0; k < n; ++k) {
-    const InterpolationStencil st = interpolation_stencil(grid_, ps.x[k], ps.y[k], cfg_.interpolation);
-    GasSample s;
-    s.rho = st.apply(*g.rho);
-    s.u = st.apply(*g.u);
-    s.v = st.apply(*g.v);
-    s.p = st.apply(*g.p);
-    s.T = st.apply(*g.T);
-    const GasProperties::At th = props_->thermo(s.T);
-    const TransportProperties tp = props_->transport(s.T, th.cp);
-    s.mu = tp.mu;
-    s.lambda = tp.lambda;
-    s.c = th.c;
-    s.cp = th.cp;
-    s.alpha_g = 1.0 - std::min(st.apply(alpha_p_), cfg_.max_volume_fraction);
-    s.vorticity = vort ? st.apply(vorticity_) : 0.0;
-    s.dpdx = cfg_.pressure_force ? st.apply(dpdx_) : 0.0;
-    s.dpdy = cfg_.pressure_force ? st.apply(dpdy_) : 0.0;
-    const ParcelAtSample pa{ps.vx[k], ps.vy[k], ps.omega[k], d};
-    const double sx = s.u - pa.vx, sy = s.v - pa.vy;
-    const double slip = std::sqrt(sx * sx + sy * sy);
-    const double re = s.rho * slip * d / s.mu;
-    SubstepCoefficients c;
-    for (const auto& m : models_) m->coefficients(s, pa, slip, re, c);
-    gu[k] = s.u;
-    gv[k] = s.v;
-    grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
-    gT[k] = s.T;
-    gp[k] = s.p;
-    K_raw[k] = K[k] = c.drag;
-    M[k] = c.magnus;
-    kappa[k] = c.torque;
-    H_raw[k] = H[k] = c.heat;
-    ps.pressure_fx[k] = c.pressure_fx;
-    ps.pressure_fy[k] = c.pressure_fy;
+  // Batches of parcels: each is sampled, then every model runs over the whole batch (one
+  // virtual call per model and batch). Dynamic scheduling: parcels in disturbed gas cost
+  // several times those in uniform gas (whose stencils are uniform and whose drag needs no
+  // logarithm), and they sit at one end of the x-ordered parcels. Each parcel's result is its
+  // own: any schedule and batching gives the same bits.
+  constexpr std::size_t kBatch = 64;
+  const std::size_t batches = (n + kBatch - 1) / kBatch;
+#pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelParcels)
+  for (std::size_t b = 0; b < batches; ++b) {
+    std::array<ModelInput, kBatch> in;
+    std::array<SubstepCoefficients, kBatch> out{};
+    const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
+    for (std::size_t q = 0; q < count; ++q) {
+      const std::size_t k = k0 + q;
+      const InterpolationStencil st = interpolation_stencil(grid_, ps.x[k], ps.y[k], cfg_.interpolation);
+      GasSample& s = in[q].gas;
+      s.rho = st.apply(*g.rho);
+      s.u = st.apply(*g.u);
+      s.v = st.apply(*g.v);
+      s.p = st.apply(*g.p);
+      s.T = st.apply(*g.T);
+      const GasProperties::At th = props_->thermo(s.T);
+      const TransportProperties tp = props_->transport(s.T, th.cp);
+      s.mu = tp.mu;
+      s.lambda = tp.lambda;
+      s.c = th.c;
+      s.cp = th.cp;
+      s.alpha_g = 1.0 - std::min(st.apply(alpha_p_), cfg_.max_volume_fraction);
+      s.vorticity = vort ? st.apply(vorticity_) : 0.0;
+      s.dpdx = cfg_.pressure_force ? st.apply(dpdx_) : 0.0;
+      s.dpdy = cfg_.pressure_force ? st.apply(dpdy_) : 0.0;
+      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d};
+      const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
+      in[q].slip = std::sqrt(sx * sx + sy * sy);
+      in[q].re = s.rho * in[q].slip * d / s.mu;
+    }
+    for (const auto& m : models_) m->coefficients(in.data(), out.data(), count);
+    for (std::size_t q = 0; q < count; ++q) {
+      const std::size_t k = k0 + q;
+      const GasSample& s = in[q].gas;
+      const SubstepCoefficients& c = out[q];
+      gu[k] = s.u;
+      gv[k] = s.v;
+      grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
+      gT[k] = s.T;
+      gp[k] = s.p;
+      K_raw[k] = K[k] = c.drag;
+      M[k] = c.magnus;
+      kappa[k] = c.torque;
+      H_raw[k] = H[k] = c.heat;
+      ps.pressure_fx[k] = c.pressure_fx;
+      ps.pressure_fy[k] = c.pressure_fy;
+    }
   }
   // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).
   double* exchanged[] = {ps.column(col_.impulse_x).data(), ps.column(col_.impulse_y).data(),
