@@ -148,18 +148,6 @@ double Axis::min_width() const {
   return w;
 }
 
-int Axis::locate(double s) const {
-  // The bucket gives the first candidate cell; a short scan finds the one whose faces hold
-  // s (the same cell as a binary search of the faces, without its dozen branches).
-  const double u = (s - interior_faces_.front()) / bucket_width_;
-  if (!(u >= 0.0)) return 0;  // also NaN
-  if (u >= static_cast<double>(bucket_first_.size())) return n_ - 1;
-  int i = bucket_first_[static_cast<std::size_t>(u)];
-  while (i + 1 < n_ && interior_faces_[static_cast<std::size_t>(i) + 1] <= s) ++i;
-  while (i > 0 && interior_faces_[static_cast<std::size_t>(i)] > s) --i;
-  return i;
-}
-
 Grid2D::Grid2D(Axis x, Axis y) : x_(std::move(x)), y_(std::move(y)) {
   if (x_.ghosts() != y_.ghosts()) throw std::invalid_argument("axes need equal ghost counts");
 }

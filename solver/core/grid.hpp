@@ -54,8 +54,19 @@ class Axis {
   double start() const { return face(0); }
   double end() const { return face(n_); }
   double min_width() const;
-  /// Index of the interior cell holding coordinate s (clamped to [0, n-1]).
-  int locate(double s) const;
+  /// Index of the interior cell holding coordinate s (clamped to [0, n-1]). Inline: every
+  /// parcel locates itself several times per step.
+  int locate(double s) const {
+    // The bucket gives the first candidate cell; a short scan finds the one whose faces hold
+    // s (the same cell as a binary search of the faces, without its dozen branches).
+    const double u = (s - interior_faces_.front()) / bucket_width_;
+    if (!(u >= 0.0)) return 0;  // also NaN
+    if (u >= static_cast<double>(bucket_first_.size())) return n_ - 1;
+    int i = bucket_first_[static_cast<std::size_t>(u)];
+    while (i + 1 < n_ && interior_faces_[static_cast<std::size_t>(i) + 1] <= s) ++i;
+    while (i > 0 && interior_faces_[static_cast<std::size_t>(i)] > s) --i;
+    return i;
+  }
   const std::vector<double>& interior_faces() const { return interior_faces_; }
   /// The three-point Lagrange derivative at interior centre k (one-sided at the ends), made
   /// once from the centres:

@@ -9,7 +9,9 @@
 //    (the paper's rule), or is spread over the cells overlapped by a square "domain of
 //    influence" of side `influence_width` centred on the parcel (Table 2). Both conserve
 //    the deposited sum exactly.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 
 #include "solver/core/field.hpp"
@@ -32,10 +34,44 @@ struct InterpolationStencil {
 
 enum class InterpolationRule { Triangle, Bilinear };
 
+namespace detail {
+
+/// Index i of the centre at or left of s, with fraction t in [0, 1] towards centre i+1,
+/// allowing the ghost centres -1 and n.
+inline void bracket_centres(const Axis& a, double s, int& i, double& t) {
+  const int n = a.cells();
+  const double lo = a.center(-1), hi = a.center(n);
+  s = std::clamp(s, lo, hi);
+  int k = a.locate(s);  // interior cell holding s (clamped)
+  if (s < a.center(k)) --k;
+  k = std::clamp(k, -1, n - 1);
+  i = k;
+  t = (s - a.center(k)) / (a.center(k + 1) - a.center(k));
+  t = std::clamp(t, 0.0, 1.0);
+}
+
+}  // namespace detail
+
 /// Stencil of point (x, y); points beyond the outermost interior centres use the ghost
-/// layer (ghosts >= 1), points outside the grid are clamped to it.
-InterpolationStencil interpolation_stencil(const Grid2D& g, double x, double y,
-                                           InterpolationRule rule = InterpolationRule::Triangle);
+/// layer (ghosts >= 1), points outside the grid are clamped to it. Inline: every parcel
+/// makes one per step.
+inline InterpolationStencil interpolation_stencil(const Grid2D& g, double x, double y,
+                                                  InterpolationRule rule = InterpolationRule::Triangle) {
+  InterpolationStencil st;
+  double s = 0.0, t = 0.0;
+  detail::bracket_centres(g.x(), x, st.i, s);
+  detail::bracket_centres(g.y(), y, st.j, t);
+  if (rule == InterpolationRule::Bilinear) {
+    st.weight = {(1 - s) * (1 - t), s * (1 - t), (1 - s) * t, s * t};
+  } else if (s >= t) {
+    // Case 1: triangle (0,0)-(1,0)-(1,1); barycentric weights = sub-triangle area ratios.
+    st.weight = {1.0 - s, s - t, 0.0, t};
+  } else {
+    // Case 2: triangle (0,0)-(0,1)-(1,1).
+    st.weight = {1.0 - t, 0.0, t - s, s};
+  }
+  return st;
+}
 
 /// Up to four (cell, fraction) pairs of a deposit; fractions sum to one.
 struct DepositStencil {
@@ -46,7 +82,38 @@ struct DepositStencil {
 
 /// influence_width <= 0: the cell holding (x, y) takes everything (eq. 12 literally).
 /// Otherwise a square of that side is split by area over the interior cells it overlaps
-/// (clipped at the domain edges so nothing is lost).
-DepositStencil deposit_stencil(const Grid2D& g, double x, double y, double influence_width);
+/// (clipped at the domain edges so nothing is lost). Inline, as the interpolation stencil.
+inline DepositStencil deposit_stencil(const Grid2D& g, double x, double y, double w) {
+  DepositStencil d;
+  const Axis& ax = g.x();
+  const Axis& ay = g.y();
+  if (w <= 0.0) {
+    d.count = 1;
+    d.i[0] = ax.locate(x);
+    d.j[0] = ay.locate(y);
+    d.fraction[0] = 1.0;
+    return d;
+  }
+  // Clip the square to the domain, then split it by overlap with at most 2 x 2 cells
+  // (influence width must not exceed the smallest cell; checked by the scene).
+  const double x0 = std::clamp(x - 0.5 * w, ax.start(), ax.end() - w);
+  const double y0 = std::clamp(y - 0.5 * w, ay.start(), ay.end() - w);
+  const int i0 = ax.locate(x0), j0 = ay.locate(y0);
+  const double fx0 = std::min(1.0, (ax.face(i0 + 1) - x0) / w);
+  const double fy0 = std::min(1.0, (ay.face(j0 + 1) - y0) / w);
+  const double fx[2] = {fx0, 1.0 - fx0};
+  const double fy[2] = {fy0, 1.0 - fy0};
+  for (int b = 0; b < 2; ++b) {
+    for (int a = 0; a < 2; ++a) {
+      const double f = fx[a] * fy[b];
+      if (f <= 0.0) continue;
+      d.i[static_cast<std::size_t>(d.count)] = std::min(i0 + a, ax.cells() - 1);
+      d.j[static_cast<std::size_t>(d.count)] = std::min(j0 + b, ay.cells() - 1);
+      d.fraction[static_cast<std::size_t>(d.count)] = f;
+      ++d.count;
+    }
+  }
+  return d;
+}
 
 }  // namespace dustlift
