@@ -32,7 +32,9 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   const DemDomain& d = cfg_.domain;
   // Cells at least as wide as the largest cutoff so that all candidates lie in the 3x3 block.
   double d_max = 0.0;
-  for (double di : diameter) d_max = std::max(d_max, di);
+  const double* dia = diameter.data();
+#pragma omp parallel for schedule(static) reduction(max : d_max) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) d_max = std::max(d_max, dia[i]);
   const double cutoff = d_max + skin_;
   radius_max_ = 0.5 * d_max;
   cutoff_ = cutoff;
@@ -77,6 +79,7 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
     // so memory order is still close to cell order); the cells list them by index instead.
     members_.swap(order_);
     old_index_.resize(n);
+#pragma omp parallel for simd schedule(static) if (n >= kParallelMinimum)
     for (std::size_t i = 0; i < n; ++i) old_index_[i] = static_cast<std::int32_t>(i);
     return;
   }
@@ -84,6 +87,7 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   for_each_permuted_column([this](std::vector<double>& v) { permute(v, order_, scratch_d_); });
   permute(id, order_, scratch_i_);
   scratch_wall_.resize(n * kWallCount);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
     for (int w = 0; w < kWallCount; ++w) scratch_wall_[k * kWallCount + w] = wall_delta[order_[k] * kWallCount + w];
   }
@@ -91,6 +95,7 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   permute(cell_of_, order_, scratch_i_);
   old_index_.swap(order_);
   members_.resize(n);
+#pragma omp parallel for simd schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) members_[i] = static_cast<std::int32_t>(i);
 }
 
@@ -101,8 +106,10 @@ void ParcelSystem::rebuild_neighbours() {
   if (had_list) {
     old_offset_.swap(nbr_offset);
     old_delta_.swap(nbr_delta);
-    old_partner_id_.resize(nbr_index.size());
-    for (std::size_t k = 0; k < nbr_index.size(); ++k) old_partner_id_[k] = id[nbr_index[k]];
+    const std::size_t slots = nbr_index.size();
+    old_partner_id_.resize(slots);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+    for (std::size_t k = 0; k < slots; ++k) old_partner_id_[k] = id[nbr_index[k]];
   }
   // The data are re-sorted by cell every kSortEvery rebuilds (and at the first): moving 40
   // columns costs more than the list itself, and memory order decays slowly.
@@ -280,10 +287,17 @@ void ParcelSystem::rebuild_neighbours() {
     }
     wall_mask_[i] = mask;
   }
-  x_build_ = x;  // same size: no allocation
-  y_build_ = y;
+  // The positions of this build and the skins' inverse squares, in parallel (no allocation:
+  // same sizes as before).
+  x_build_.resize(n);
+  y_build_.resize(n);
   inv_skin2_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
+#pragma omp parallel for simd schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) {
+    x_build_[i] = x[i];
+    y_build_[i] = y[i];
+    inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
+  }
   needs_rebuild_ = false;
   ++rebuilds_;
 }
