@@ -133,6 +133,7 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
   const std::size_t buckets =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(length / min_width())), 1, 4 * static_cast<std::size_t>(n_));
   bucket_width_ = length / static_cast<double>(buckets);
+  inverse_bucket_width_ = 1.0 / bucket_width_;
   bucket_first_.resize(buckets);
   int cell = 0;
   for (std::size_t b = 0; b < buckets; ++b) {

@@ -58,8 +58,9 @@ class Axis {
   /// parcel locates itself several times per step.
   int locate(double s) const {
     // The bucket gives the first candidate cell; a short scan finds the one whose faces hold
-    // s (the same cell as a binary search of the faces, without its dozen branches).
-    const double u = (s - interior_faces_.front()) / bucket_width_;
+    // s (the same cell as a binary search of the faces, without its dozen branches). The
+    // scan corrects any start, so the bucket may come from a product, not a division.
+    const double u = (s - interior_faces_.front()) * inverse_bucket_width_;
     if (!(u >= 0.0)) return 0;  // also NaN
     if (u >= static_cast<double>(bucket_first_.size())) return n_ - 1;
     int i = bucket_first_[static_cast<std::size_t>(u)];
@@ -88,6 +89,7 @@ class Axis {
   /// locate() in O(1): the axis cut into equal buckets no wider than its smallest cell (at
   /// most 4 n of them), each with the first cell it overlaps.
   double bucket_width_ = 1.0;
+  double inverse_bucket_width_ = 1.0;
   std::vector<int> bucket_first_;
 };
 
