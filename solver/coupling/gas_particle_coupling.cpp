@@ -409,7 +409,9 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
   const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
   const GasPrimitives g = gas.primitives();
   const int nx = c + 1;
-#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(j1) * nx >= kParallelParcels)
+  // Rows one at a time: the cells holding parcels are mostly in the layer's few rows at the
+  // bottom, which a static split gave to one thread. Every cell on its own.
+#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1) * nx >= kParallelParcels)
   for (int j = 0; j < j1; ++j) {
     for (int i = 0; i < nx; ++i) {
       if (cell_mass_(i, j) == 0.0) continue;

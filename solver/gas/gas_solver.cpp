@@ -711,7 +711,9 @@ struct GasSolver::Impl {
     j1 = std::min(j1, ny);
 #pragma omp parallel if (threaded)
     {
-#pragma omp for schedule(static)
+      // Rows one at a time: the rows whose porosity changed (the layer's) are a few at the
+      // bottom, and a static split gave them all to one thread. Rows are independent.
+#pragma omp for schedule(dynamic, 1)
       for (int j = j0; j < j1; ++j) {
         const StageScratch sc = stage_scratch();
         fault_i[static_cast<std::size_t>(j)] = -1;
