@@ -90,18 +90,27 @@ double axis_derivative(const Axis& a, int k, At at) {
 
 }  // namespace
 
+void vorticity_z_segment(const Grid2D& g, const Field2D& u, const Field2D& v, int j, int i0, int i1, Field2D& out) {
+  for (int i = i0; i < i1; ++i) {
+    const double dvdx = axis_derivative(g.x(), i, [&](int m) { return v(m, j); });
+    const double dudy = axis_derivative(g.y(), j, [&](int m) { return u(i, m); });
+    out(i, j) = dvdx - dudy;
+  }
+}
+
+void gradient_segment(const Grid2D& g, const Field2D& f, int j, int i0, int i1, Field2D& dfdx, Field2D& dfdy) {
+  for (int i = i0; i < i1; ++i) {
+    dfdx(i, j) = axis_derivative(g.x(), i, [&](int m) { return f(m, j); });
+    dfdy(i, j) = axis_derivative(g.y(), j, [&](int m) { return f(i, m); });
+  }
+}
+
 void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out, int i1) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
   i1 = std::min(i1, g.nx());
 #pragma omp parallel for schedule(static) if ((j1 - j0) * i1 >= 32768)
-  for (int j = j0; j < j1; ++j) {
-    for (int i = 0; i < i1; ++i) {
-      const double dvdx = axis_derivative(g.x(), i, [&](int m) { return v(m, j); });
-      const double dudy = axis_derivative(g.y(), j, [&](int m) { return u(i, m); });
-      out(i, j) = dvdx - dudy;
-    }
-  }
+  for (int j = j0; j < j1; ++j) vorticity_z_segment(g, u, v, j, 0, i1, out);
 }
 
 void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy, int i1) {
@@ -109,12 +118,7 @@ void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& d
   j1 = std::min(j1, g.ny());
   i1 = std::min(i1, g.nx());
 #pragma omp parallel for schedule(static) if ((j1 - j0) * i1 >= 32768)
-  for (int j = j0; j < j1; ++j) {
-    for (int i = 0; i < i1; ++i) {
-      dfdx(i, j) = axis_derivative(g.x(), i, [&](int m) { return f(m, j); });
-      dfdy(i, j) = axis_derivative(g.y(), j, [&](int m) { return f(i, m); });
-    }
-  }
+  for (int j = j0; j < j1; ++j) gradient_segment(g, f, j, 0, i1, dfdx, dfdy);
 }
 
 }  // namespace dustlift

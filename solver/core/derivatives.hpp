@@ -38,6 +38,10 @@ void vorticity_z_rows(const Grid2D& grid, const Field2D& u, const Field2D& v, in
 void gradient_rows(const Grid2D& grid, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy,
                    int i1 = std::numeric_limits<int>::max());
 
+/// The row functions of the two above: interior cells [i0, i1) of row j only.
+void vorticity_z_segment(const Grid2D& grid, const Field2D& u, const Field2D& v, int j, int i0, int i1, Field2D& out);
+void gradient_segment(const Grid2D& grid, const Field2D& f, int j, int i0, int i1, Field2D& dfdx, Field2D& dfdy);
+
 /// Interior cell centres of an axis.
 std::vector<double> interior_centers(const Axis& axis);
 

@@ -1,8 +1,11 @@
 #include "solver/coupling/gas_particle_coupling.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -276,6 +279,44 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   gas.initialize_porosity(alpha_g_);
 }
 
+void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j0, int j1, int i1) {
+  const bool vorticity = needs_vorticity(), gradient = cfg_.pressure_force;
+  if (!vorticity && !gradient) return;
+  const int nx = grid_.nx(), ny = grid_.ny();
+  j0 = std::max(j0, 0);
+  j1 = std::min(j1, ny);
+  i1 = std::min(i1, nx);
+  if (j1 <= j0 || i1 <= 0) return;
+  // A parcel's interpolation quad lies within one cell of the cell holding its centre, and
+  // that cell has alpha_p > 0 (the last deposit was made at the current positions). So the
+  // quads read only cells within one cell of a cell with alpha_p > 0: the derivatives are
+  // made there and nowhere else (above the layer the lifted parcels are sparse, and a row
+  // has few such cells). Each cell's value is the one a full row would give.
+  const int last_column = std::min(i1, nx - 1);  // columns up to i1 reach cells below i1
+  const std::size_t width = static_cast<std::size_t>(nx) + 2;
+  near_scratch_.resize(width * static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1 - j0) * i1 >= kParallelParcels)
+  for (int j = j0; j < j1; ++j) {
+    // near[i + 1]: column i holds parcels in one of the rows j-1, j, j+1.
+    std::uint8_t* near = near_scratch_.data() + width * static_cast<std::size_t>(omp_get_thread_num());
+    std::fill(near, near + width, std::uint8_t{0});
+    for (int r = std::max(j - 1, 0); r <= std::min(j + 1, ny - 1); ++r) {
+      const double* a = &alpha_p_(0, r);
+      for (int i = 0; i <= last_column; ++i) near[i + 1] |= static_cast<std::uint8_t>(a[i] > 0.0);
+    }
+    // Runs of cells i with parcels in columns i-1..i+1.
+    int i = 0;
+    while (i < i1) {
+      while (i < i1 && (near[i] | near[i + 1] | near[i + 2]) == 0) ++i;
+      const int begin = i;
+      while (i < i1 && (near[i] | near[i + 1] | near[i + 2]) != 0) ++i;
+      if (i == begin) break;
+      if (vorticity) vorticity_z_segment(grid_, *g.u, *g.v, j, begin, i, vorticity_);
+      if (gradient) gradient_segment(grid_, *g.p, j, begin, i, dpdx_, dpdy_);
+    }
+  }
+}
+
 void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std::size_t active) {
   const GasPrimitives g = gas.primitives();
   // The derivatives are needed where the sampled parcels' quads read them: their rows and
@@ -290,12 +331,9 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   } else {
     i1 = 0;
   }
-  if (needs_vorticity()) {
-    vorticity_z_rows(grid_, *g.u, *g.v, j0, j1, vorticity_, i1);
-    copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
-  }
+  derivatives_near_parcels(g, j0, j1, i1);
+  if (needs_vorticity()) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
   if (cfg_.pressure_force) {
-    gradient_rows(grid_, *g.p, j0, j1, dpdx_, dpdy_, i1);
     copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
     copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
   }

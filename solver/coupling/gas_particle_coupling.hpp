@@ -11,6 +11,7 @@
 //     parcels receive; move the gas to the new porosity (GasSolver::change_porosity).
 // Every per-parcel quantity lives in columns of the ParcelSystem (parcel order); one deposit
 // stencil per parcel per step serves every deposit.
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -141,6 +142,9 @@ class GasParticleCoupling {
   void deposit_alpha(const ParcelSystem& parcels);
   void deposit_exchange(GasSolver& gas, const ParcelSystem& parcels, double dt);
   void check_parcels(const ParcelSystem& parcels) const;
+  /// The vorticity and pressure gradient (what the models need) at the cells the sampled
+  /// parcels' quads can read, in rows [j0, j1) and columns [0, i1).
+  void derivatives_near_parcels(const GasPrimitives& gas, int j0, int j1, int i1);
   void row_range(const ParcelSystem& parcels, int& j0, int& j1) const;
 
   Grid2D grid_;
@@ -173,6 +177,7 @@ class GasParticleCoupling {
   bool skip_resting_ = true;
   GasSolver::RestingGas resting_;
   double rest_p_ = 0.0, rest_T_ = 0.0;  ///< the reference the rest_steps counts refer to
+  std::vector<std::uint8_t> near_scratch_;  ///< per thread, derivatives_near_parcels
   std::vector<double> rest_x_threshold_;  ///< per row: the gas over parcels at x >= it rests (plan_active_parcels)
   std::size_t last_active_ = 0;
 };

@@ -5,7 +5,11 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
+#include <map>
 
+#include "solver/core/derivatives.hpp"
+#include "solver/coupling/aerodynamics.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/transport.hpp"
@@ -208,6 +212,65 @@ TEST(Coupling, ClosedBoxConservesMassAndExchangesExactly) {
   EXPECT_GT(impulse_scale, 0.0);
   EXPECT_LT(drift_px, 0.05);
   EXPECT_LT(drift_e, 0.05);
+}
+
+TEST(Coupling, SampledRotationAndPressureForceEqualFullGridDerivatives) {
+  // The coupling makes the vorticity and grad p only at the cells its parcels' quads can read
+  // (within one cell of a cell with alpha_p > 0). The sampled values must be those of the
+  // derivatives over the whole grid, bit for bit, also for single parcels high above the layer.
+  const Scene scene = parse_scene(kBox, "box.toml");
+  Simulation sim(scene);
+  ParcelSystem& ps = *sim.parcels();
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0), b = std::cos(78.233 * static_cast<double>(k));
+    ps.vx[k] = 2.0 * a;
+    ps.vy[k] = 2.0 * b;
+    ps.omega[k] = 2000.0 * a * b;
+  }
+  // Four lone parcels in the upper rows (the layer fills y < 2 mm of the 4 mm box).
+  for (std::size_t q = 0; q < 4; ++q) {
+    const std::size_t k = q * (ps.size() / 4);
+    ps.x[k] = 0.0011 + 0.0019 * static_cast<double>(q);
+    ps.y[k] = 0.0027 + 0.0003 * static_cast<double>(q);
+  }
+  sim.advance(1.0);  // the deposit is now at the parcels' positions, as in any step
+  const GasPrimitives g = sim.gas().primitives();
+  const Grid2D& grid = sim.grid();
+  Field2D vorticity(grid), dpdx(grid), dpdy(grid);
+  vorticity_z_rows(grid, *g.u, *g.v, 0, grid.ny(), vorticity);
+  gradient_rows(grid, *g.p, 0, grid.ny(), dpdx, dpdy);
+  for (Field2D* f : {&vorticity, &dpdx, &dpdy}) {  // edge values into the ghosts, as the coupling does
+    for (int j = 0; j < grid.ny(); ++j) {
+      (*f)(-1, j) = (*f)(0, j);
+      (*f)(grid.nx(), j) = (*f)(grid.nx() - 1, j);
+    }
+    for (int i = -1; i <= grid.nx(); ++i) {
+      (*f)(i, -1) = (*f)(i, 0);
+      (*f)(i, grid.ny()) = (*f)(i, grid.ny() - 1);
+    }
+  }
+  std::map<std::int64_t, std::pair<double, double>> position_by_id;
+  for (std::size_t k = 0; k < ps.size(); ++k) position_by_id[ps.id[k]] = {ps.x[k], ps.y[k]};
+  double highest = 0.0;
+  for (std::size_t k = 0; k < ps.size(); ++k) highest = std::max(highest, ps.y[k]);
+  ASSERT_GT(highest, 0.0027);
+  sim.advance(1.0);  // samples the gas above at the positions above
+  const std::vector<double>* rotation = nullptr;
+  for (std::size_t c = 0; c < ps.attached_count(); ++c) {
+    if (ps.attached_spec(c).name == "gas_rotation") rotation = &ps.attached(c);
+  }
+  ASSERT_NE(rotation, nullptr);
+  const double d = scene.particles.particle_diameter;
+  std::size_t mismatches = 0;
+  for (std::size_t k = 0; k < ps.size(); ++k) {
+    const auto [x, y] = position_by_id.at(ps.id[k]);
+    const InterpolationStencil st = interpolation_stencil(grid, x, y);
+    const Vec2 force = aero::pressure_force(d, {st.apply(dpdx), st.apply(dpdy)});
+    if ((*rotation)[k] != 0.5 * st.apply(vorticity) || ps.pressure_fx[k] != force.x || ps.pressure_fy[k] != force.y) {
+      ++mismatches;
+    }
+  }
+  EXPECT_EQ(mismatches, 0u) << "of " << ps.size() << " parcels";
 }
 
 TEST(Coupling, QuiescentGasOverRestingLayerStaysAtRest) {
