@@ -105,20 +105,18 @@ void gradient_segment(const Grid2D& g, const Field2D& f, int j, int i0, int i1, 
   }
 }
 
-void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out, int i1) {
+void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
-  i1 = std::min(i1, g.nx());
-#pragma omp parallel for schedule(static) if ((j1 - j0) * i1 >= 32768)
-  for (int j = j0; j < j1; ++j) vorticity_z_segment(g, u, v, j, 0, i1, out);
+#pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
+  for (int j = j0; j < j1; ++j) vorticity_z_segment(g, u, v, j, 0, g.nx(), out);
 }
 
-void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy, int i1) {
+void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
-  i1 = std::min(i1, g.nx());
-#pragma omp parallel for schedule(static) if ((j1 - j0) * i1 >= 32768)
-  for (int j = j0; j < j1; ++j) gradient_segment(g, f, j, 0, i1, dfdx, dfdy);
+#pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
+  for (int j = j0; j < j1; ++j) gradient_segment(g, f, j, 0, g.nx(), dfdx, dfdy);
 }
 
 }  // namespace dustlift

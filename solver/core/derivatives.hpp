@@ -2,7 +2,6 @@
 // Derivatives of cell-centred fields on a rectilinear (possibly stretched) grid: the
 // out-of-plane vorticity w_z = dv/dx - du/dy (Magnus lift, output) and gradients (pressure
 // force). 2nd order: 3-point Lagrange weights, central inside and one-sided at the edges.
-#include <limits>
 #include <span>
 #include <vector>
 
@@ -30,15 +29,13 @@ void vorticity_z(std::span<const double> x_centers, std::span<const double> y_ce
 /// Same on Field2D (interior only; ghosts are not trusted). Returns nx*ny values, x fastest.
 std::vector<double> vorticity_z(const Grid2D& grid, const Field2D& u, const Field2D& v);
 
-/// w_z and grad f on interior rows j0..j1-1 and interior columns 0..i1-1 only (all columns by
-/// default), written into Field2D outputs (other cells untouched). Used by the coupling near
-/// the parcels it samples.
-void vorticity_z_rows(const Grid2D& grid, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out,
-                      int i1 = std::numeric_limits<int>::max());
-void gradient_rows(const Grid2D& grid, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy,
-                   int i1 = std::numeric_limits<int>::max());
+/// w_z and grad f on interior rows j0..j1-1 only (interior columns), written into Field2D
+/// outputs (other cells untouched).
+void vorticity_z_rows(const Grid2D& grid, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out);
+void gradient_rows(const Grid2D& grid, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy);
 
-/// The row functions of the two above: interior cells [i0, i1) of row j only.
+/// The row functions of the two above: interior cells [i0, i1) of row j only (the coupling
+/// calls them on the cells its parcels read).
 void vorticity_z_segment(const Grid2D& grid, const Field2D& u, const Field2D& v, int j, int i0, int i1, Field2D& out);
 void gradient_segment(const Grid2D& grid, const Field2D& f, int j, int i0, int i1, Field2D& dfdx, Field2D& dfdy);
 

@@ -56,11 +56,11 @@ class CouplingModel {
   /// One line for `dustlift info`.
   virtual std::string description() const = 0;
   /// Adds this model's coefficient for each of n parcels: one virtual call per batch, the
-  /// per-parcel formula (coefficients() of the model) inlined in its loop.
+  /// per-parcel formula (coefficient() of the model) inlined in its loop.
   virtual void coefficients(const ModelInput* in, SubstepCoefficients* out, std::size_t n) const = 0;
 };
 
-/// The batch loop over a model's per-parcel `coefficients(const ModelInput&, SubstepCoefficients&)`.
+/// The batch loop over a model's per-parcel `coefficient(const ModelInput&, SubstepCoefficients&)`.
 template <class Model>
 class BatchedCouplingModel : public CouplingModel {
  public:

@@ -166,7 +166,7 @@ void GasParticleCoupling::plan_scatter(std::size_t count) {
 }
 
 int GasParticleCoupling::deposit_column_bound(double x) const {
-  // A stencil's square [x0, x0 + w] with x0 >= x - w/2 clipped at the start (grid_transfer.cpp).
+  // A stencil's square [x0, x0 + w] with x0 >= x - w/2 clipped at the start (deposit_stencil, grid_transfer.hpp).
   const double right = std::max(x + 0.5 * std::max(cfg_.influence_width, 0.0), grid_.x().start() + cfg_.influence_width);
   return std::min(grid_.nx() - 1, grid_.x().locate(right) + 1);
 }

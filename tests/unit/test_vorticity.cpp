@@ -94,7 +94,8 @@ TEST(Vorticity, SmoothFieldConvergesAtSecondOrder) {
 
 }  // namespace
 TEST(Vorticity, RowKernelsMatchTheSpanFormAndGradientsOfAQuadraticAreExact) {
-  // The rows the coupling samples (vorticity_z_rows, gradient_rows) read each axis's
+  // The row kernels (vorticity_z_rows, gradient_rows; their segments are what the coupling
+  // samples) read each axis's
   // derivative weights made once (Axis::derivative_stencil): the same numbers as the weights
   // made per cell, and exact for a quadratic field on a stretched grid, walls included.
   const Grid2D grid = stretched_grid(17, 13);
