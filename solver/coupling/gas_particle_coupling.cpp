@@ -358,30 +358,46 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   // own: any schedule and batching gives the same bits.
   constexpr std::size_t kBatch = 64;
   const std::size_t batches = (n + kBatch - 1) / kBatch;
+  const bool pressure = cfg_.pressure_force;
 #pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelParcels)
   for (std::size_t b = 0; b < batches; ++b) {
     std::array<ModelInput, kBatch> in;
     std::array<SubstepCoefficients, kBatch> out{};
     const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
+    // The batch's stencils, then each field at all of them (a vector loop per field).
+    InterpolationBatch<kBatch> quads(grid_);
+    for (std::size_t q = 0; q < count; ++q) {
+      quads.push(interpolation_stencil(grid_, ps.x[k0 + q], ps.y[k0 + q], cfg_.interpolation));
+    }
+    enum Sampled { kRho, kU, kV, kP, kT, kAlphaP, kVorticity, kDpdx, kDpdy, kFields };
+    alignas(64) double value[kFields][kBatch];
+    const Field2D* fields[kFields] = {g.rho, g.u, g.v, g.p, g.T, &alpha_p_, vort ? &vorticity_ : nullptr,
+                                      pressure ? &dpdx_ : nullptr, pressure ? &dpdy_ : nullptr};
+    for (int f = 0; f < kFields; ++f) {
+      if (fields[f] != nullptr) {
+        quads.apply(*fields[f], value[f]);
+      } else {
+        std::fill(value[f], value[f] + count, 0.0);
+      }
+    }
     for (std::size_t q = 0; q < count; ++q) {
       const std::size_t k = k0 + q;
-      const InterpolationStencil st = interpolation_stencil(grid_, ps.x[k], ps.y[k], cfg_.interpolation);
       GasSample& s = in[q].gas;
-      s.rho = st.apply(*g.rho);
-      s.u = st.apply(*g.u);
-      s.v = st.apply(*g.v);
-      s.p = st.apply(*g.p);
-      s.T = st.apply(*g.T);
+      s.rho = value[kRho][q];
+      s.u = value[kU][q];
+      s.v = value[kV][q];
+      s.p = value[kP][q];
+      s.T = value[kT][q];
       const GasProperties::At th = props_->thermo(s.T);
       const TransportProperties tp = props_->transport(s.T, th.cp);
       s.mu = tp.mu;
       s.lambda = tp.lambda;
       s.c = th.c;
       s.cp = th.cp;
-      s.alpha_g = 1.0 - std::min(st.apply(alpha_p_), cfg_.max_volume_fraction);
-      s.vorticity = vort ? st.apply(vorticity_) : 0.0;
-      s.dpdx = cfg_.pressure_force ? st.apply(dpdx_) : 0.0;
-      s.dpdy = cfg_.pressure_force ? st.apply(dpdy_) : 0.0;
+      s.alpha_g = 1.0 - std::min(value[kAlphaP][q], cfg_.max_volume_fraction);
+      s.vorticity = value[kVorticity][q];
+      s.dpdx = value[kDpdx][q];
+      s.dpdy = value[kDpdy][q];
       in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d};
       const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
       in[q].slip = std::sqrt(sx * sx + sy * sy);

@@ -2,7 +2,10 @@
 // sum to one; deposition conserves the deposited quantity exactly.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstring>
 #include <random>
+#include <vector>
 
 #include "solver/coupling/grid_transfer.hpp"
 
@@ -57,6 +60,44 @@ TEST(Interpolation, AtCellCentreReturnsTheCellValue) {
   for (int j = 0; j < g.ny(); ++j)
     for (int i = 0; i < g.nx(); ++i)
       EXPECT_NEAR(interpolation_stencil(g, g.x().center(i), g.y().center(j)).apply(f), 100.0 * i + j, 1e-9);
+}
+
+TEST(Interpolation, BatchGivesTheBitsOfOneStencilAtATime) {
+  // The coupling samples nine fields per parcel through InterpolationBatch (vector loops);
+  // every value must be the one InterpolationStencil::apply gives, bit for bit, including the
+  // exact value of a uniform quad (a field at rest must stay exactly at rest).
+  const Grid2D g = stretched_grid();
+  Field2D f(g);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> value(-3.0, 7.0);
+  for (int j = -2; j < g.ny() + 2; ++j)
+    for (int i = -2; i < g.nx() + 2; ++i) f(i, j) = i < 4 ? 0.1 : value(rng);  // uniform on the left
+  std::uniform_real_distribution<double> ux(g.x().start(), g.x().end()), uy(g.y().start(), g.y().end());
+  constexpr std::size_t kBatch = 64;
+  InterpolationBatch<kBatch> batch(g);
+  int uniform = 0;
+  for (int round = 0; round < 40; ++round) {
+    batch.clear();
+    std::vector<InterpolationStencil> one;
+    const std::size_t count = round % 2 == 0 ? kBatch : 1 + static_cast<std::size_t>(round);
+    for (std::size_t q = 0; q < count; ++q) {
+      one.push_back(interpolation_stencil(g, ux(rng), uy(rng), round % 3 == 0 ? InterpolationRule::Bilinear
+                                                                                : InterpolationRule::Triangle));
+      batch.push(one.back());
+    }
+    ASSERT_EQ(batch.size(), count);
+    std::array<double, kBatch> out{};
+    batch.apply(f, out.data());
+    for (std::size_t q = 0; q < count; ++q) {
+      const double expected = one[q].apply(f);
+      EXPECT_EQ(std::memcmp(&out[q], &expected, sizeof(double)), 0) << out[q] << " vs " << expected;
+      if (one[q].i + 1 < 4) {
+        EXPECT_EQ(out[q], 0.1);  // exactly, whatever the weights
+        ++uniform;
+      }
+    }
+  }
+  EXPECT_GT(uniform, 20);
 }
 
 TEST(Deposition, ConservesTheDepositedSum) {
