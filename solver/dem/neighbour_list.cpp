@@ -58,15 +58,31 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
       if (x[i] >= d.x_max) x[i] -= length_x_;  // round-off at the edge
     }
   }
+  // The cells are stored only over the box the parcels occupy (the paper's channel has
+  // millions of cells above and beside the layer, and every rebuild walked them three times);
+  // the numbering keeps the domain's (cx, cy) order, so the sort and the lists are the same.
   cell_of_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  cell_y_.resize(n);
+  int cx_lo = cells_x_, cx_hi = 0, cy_lo = cells_y_, cy_hi = 0;
+#pragma omp parallel for schedule(static) reduction(min : cx_lo, cy_lo) reduction(max : cx_hi, cy_hi) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     // Clamping keeps parcels outside the domain correct: it is monotone and contracts.
     const int cx = std::clamp(static_cast<int>(std::floor((x[i] - d.x_min) / cell_dx_)), 0, cells_x_ - 1);
     const int cy = std::clamp(static_cast<int>(std::floor((y[i] - d.y_min) / cell_dy_)), 0, cells_y_ - 1);
-    cell_of_[i] = cell_index(cx, cy);
+    cell_of_[i] = cx;
+    cell_y_[i] = cy;
+    cx_lo = std::min(cx_lo, cx);
+    cx_hi = std::max(cx_hi, cx);
+    cy_lo = std::min(cy_lo, cy);
+    cy_hi = std::max(cy_hi, cy);
   }
-  const std::size_t n_cells = static_cast<std::size_t>(cells_x_) * cells_y_;
+  box_x0_ = n > 0 ? cx_lo : 0;
+  box_y0_ = n > 0 ? cy_lo : 0;
+  box_nx_ = n > 0 ? cx_hi - cx_lo + 1 : 1;
+  box_ny_ = n > 0 ? cy_hi - cy_lo + 1 : 1;
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) cell_of_[i] = cell_index(cell_of_[i], cell_y_[i]);
+  const std::size_t n_cells = static_cast<std::size_t>(box_nx_) * static_cast<std::size_t>(box_ny_);
   cell_start_.assign(n_cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
   for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
@@ -147,8 +163,8 @@ void ParcelSystem::rebuild_neighbours() {
   // (major axis outer, minor inner, parcels in cell order) and calls f(j, image).
   auto for_each_nearby = [&](std::size_t i, int block, auto&& f) {
     const int c = cell_of_[i];
-    const int cx = x_major_ ? c / cells_y_ : c % cells_x_;
-    const int cy = x_major_ ? c % cells_y_ : c / cells_x_;
+    const int cx = box_x0_ + (x_major_ ? c / box_ny_ : c % box_nx_);
+    const int cy = box_y0_ + (x_major_ ? c % box_ny_ : c / box_nx_);
     for (int outer = -block; outer <= block; ++outer) {
       for (int inner = -block; inner <= block; ++inner) {
         const int ddx = x_major_ ? outer : inner, ddy = x_major_ ? inner : outer;
@@ -161,6 +177,7 @@ void ParcelSystem::rebuild_neighbours() {
           image = rx < 0 ? -1 : 1;
           rx -= image * cells_x_;
         }
+        if (!in_box(rx, ry)) continue;  // no parcels there
         const int cell = cell_index(rx, ry);
         for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
           const std::int32_t j = members_[static_cast<std::size_t>(q)];
@@ -235,37 +252,59 @@ void ParcelSystem::rebuild_neighbours() {
     }
   };
 
+  // One search per parcel: each thread lists the partners of a contiguous range of parcels
+  // into its own buffer, then the buffers are joined in parcel order (the same list whatever
+  // the thread count) and the history of pairs listed before is carried over.
   nbr_offset.resize(n + 1);
   nbr_offset[0] = 0;
-#pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t count = 0;
-    for_each_partner(i, [&](std::int32_t, int) { ++count; });
-    nbr_offset[i + 1] = count;
+  const int list_threads = n >= kParallelMinimum ? std::max(1, omp_get_max_threads()) : 1;
+  list_by_thread_.resize(static_cast<std::size_t>(list_threads));
+  auto thread_range = [&](int t, std::size_t& i0, std::size_t& i1) {
+    i0 = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(list_threads);
+    i1 = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(list_threads);
+  };
+#pragma omp parallel num_threads(list_threads) if (list_threads > 1)
+  {
+    const int t = omp_get_thread_num();
+    std::size_t i0 = 0, i1 = 0;
+    thread_range(t, i0, i1);
+    std::vector<ListedPartner>& mine = list_by_thread_[static_cast<std::size_t>(t)];
+    mine.clear();
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::size_t before = mine.size();
+      for_each_partner(i, [&](std::int32_t j, int image) { mine.push_back({j, static_cast<std::int8_t>(image)}); });
+      nbr_offset[i + 1] = static_cast<std::int32_t>(mine.size() - before);
+    }
   }
   for (std::size_t i = 0; i < n; ++i) nbr_offset[i + 1] += nbr_offset[i];
   const std::size_t slots = static_cast<std::size_t>(nbr_offset[n]);
   nbr_index.resize(slots);
   nbr_image.resize(slots);
   nbr_delta.resize(slots);
-#pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t k = nbr_offset[i];
-    for_each_partner(i, [&](std::int32_t j, int image) {
-      nbr_index[k] = j;
-      nbr_image[k] = static_cast<std::int8_t>(image);
-      nbr_delta[k] = 0.0;
-      ++k;
-    });
-    if (!had_list) continue;
-    // Carry over the history of pairs that were listed before.
-    const std::int32_t o = old_index_[i];
-    for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
-      const std::int32_t pid = id[nbr_index[s]];
-      for (std::int32_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
-        if (old_partner_id_[q] == pid) {
-          nbr_delta[s] = old_delta_[q];
-          break;
+#pragma omp parallel num_threads(list_threads) if (list_threads > 1)
+  {
+    const int t = omp_get_thread_num();
+    std::size_t i0 = 0, i1 = 0;
+    thread_range(t, i0, i1);
+    const std::vector<ListedPartner>& mine = list_by_thread_[static_cast<std::size_t>(t)];
+    const auto first = static_cast<std::size_t>(nbr_offset[i0]);
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      nbr_index[first + k] = mine[k].j;
+      nbr_image[first + k] = mine[k].image;
+      nbr_delta[first + k] = 0.0;
+    }
+    if (had_list) {
+      for (std::size_t i = i0; i < i1; ++i) {
+        // Carry over the history of pairs that were listed before.
+        const std::int32_t o = old_index_[i];
+        for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
+          const std::int32_t pid = id[nbr_index[s]];
+          for (std::int32_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
+            if (old_partner_id_[q] == pid) {
+              nbr_delta[s] = old_delta_[q];
+              break;
+            }
+          }
         }
       }
     }

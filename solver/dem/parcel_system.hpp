@@ -266,9 +266,19 @@ class ParcelSystem {
   // Cell grid of the last rebuild.
   int cells_x_ = 1, cells_y_ = 1;
   bool x_major_ = true;  ///< cells numbered along y first (x is the long axis)
-  int cell_index(int cx, int cy) const { return x_major_ ? cx * cells_y_ + cy : cy * cells_x_ + cx; }
+  /// The cells stored: columns [box_x0_, box_x0_ + box_nx_) x rows [box_y0_, box_y0_ + box_ny_)
+  /// of the domain's cells, those the parcels occupied at the last sort.
+  int box_x0_ = 0, box_y0_ = 0, box_nx_ = 1, box_ny_ = 1;
+  bool in_box(int cx, int cy) const {
+    return cx >= box_x0_ && cx < box_x0_ + box_nx_ && cy >= box_y0_ && cy < box_y0_ + box_ny_;
+  }
+  /// Index of domain cell (cx, cy) inside the box, numbered in the domain's order.
+  int cell_index(int cx, int cy) const {
+    return x_major_ ? (cx - box_x0_) * box_ny_ + (cy - box_y0_) : (cy - box_y0_) * box_nx_ + (cx - box_x0_);
+  }
   double cell_dx_ = 1.0, cell_dy_ = 1.0;
   std::vector<std::int32_t> cell_of_, cell_start_, order_;
+  std::vector<std::int32_t> cell_y_;     ///< sort scratch: each parcel's cell row
   std::vector<std::int32_t> members_;    ///< parcels of each cell: members_[cell_start_[c] ..]
   std::vector<std::int32_t> cursor_;     ///< counting-sort fill positions, one per cell
   std::vector<std::int32_t> old_index_;  ///< index before the last rebuild, per parcel
@@ -283,6 +293,11 @@ class ParcelSystem {
   std::vector<std::int32_t> fast_, fast_start_, extra_start_;
   std::vector<FastPair> fast_pairs_, extra_pairs_;
   std::vector<std::vector<FastPair>> fast_pairs_by_thread_;
+  struct ListedPartner {
+    std::int32_t j;
+    std::int8_t image;
+  };
+  std::vector<std::vector<ListedPartner>> list_by_thread_;  ///< rebuild scratch, one per thread
   double radius_max_ = 0.0, cutoff_ = 0.0;
 
   // Rebuild scratch (kept to avoid reallocation).
