@@ -135,6 +135,7 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
   bucket_width_ = length / static_cast<double>(buckets);
   inverse_bucket_width_ = 1.0 / bucket_width_;
   bucket_first_.resize(buckets);
+  last_bucket_ = static_cast<double>(buckets - 1);
   int cell = 0;
   for (std::size_t b = 0; b < buckets; ++b) {
     const double start = interior_faces_.front() + static_cast<double>(b) * bucket_width_;

@@ -2,9 +2,12 @@
 // Rectilinear, optionally stretched 2-D grid with ghost layers.
 // The paper's mesh (section 3.1): uniform 250 um cells in the main region,
 // geometric stretching upstream (x < 0) and above y = 32 mm.
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
+
+#include "solver/core/select.hpp"
 
 namespace dustlift {
 
@@ -38,6 +41,33 @@ std::vector<double> build_axis_nodes(const AxisSpec& spec);
 /// one cell, which is then the whole region, whatever its width).
 double geometric_growth_ratio(double first, double length, std::size_t cells);
 
+/// What vector loops read of an Axis, as plain pointers and values (copied into the loop, so
+/// the compiler need not reload them after every store): locate_bounded and the centres.
+struct AxisView {
+  const double* faces = nullptr;    ///< interior faces 0..n
+  const double* centres = nullptr;  ///< centres[i] = centre of cell i, i in [-ng, n + ng)
+  const int* bucket_first = nullptr;
+  double start = 0.0, inverse_bucket_width = 1.0, last_bucket = 0.0;
+  int n = 0;
+
+  double centre(int i) const { return centres[i]; }
+  /// Axis::locate without its open-ended scans: the bucket's first cell moved at most two cells
+  /// up and one down. `exact` comes back false where that need not be the cell locate() gives
+  /// (a NaN, or buckets wider than a cell); the caller then uses locate().
+  int locate_bounded(double s, bool& exact) const {
+    const double u = (s - start) * inverse_bucket_width;
+    const double bucket = u >= 0.0 ? min_of(u, last_bucket) : 0.0;
+    int i = bucket_first[static_cast<int>(bucket)];
+    i += static_cast<int>((i + 1 < n) & (faces[i + 1] <= s));  // faces[n] exists
+    i += static_cast<int>((i + 1 < n) & (faces[i + 1] <= s));
+    i -= static_cast<int>((i > 0) & (faces[i] > s));
+    // The cell whose faces hold s (the first or the last beyond the ends): where the scans of
+    // locate() stop.
+    exact = ((i == 0) | (faces[i] <= s)) & ((i + 1 >= n) | (faces[i + 1] > s));
+    return i;
+  }
+};
+
 /// One axis with ghost cells: interior cells 0..n-1, ghosts -ng..-1 and n..n+ng-1.
 /// Ghost widths mirror the adjacent interior widths.
 class Axis {
@@ -69,6 +99,10 @@ class Axis {
     return i;
   }
   const std::vector<double>& interior_faces() const { return interior_faces_; }
+  AxisView view() const {
+    return {interior_faces_.data(), centers_.data() + ng_, bucket_first_.data(), interior_faces_.front(),
+            inverse_bucket_width_, last_bucket_, n_};
+  }
   /// The three-point Lagrange derivative at interior centre k (one-sided at the ends), made
   /// once from the centres:
   ///   d f/ds = w0 (f[first] - f[first+1]) + w2 (f[first+2] - f[first+1])
@@ -91,6 +125,7 @@ class Axis {
   double bucket_width_ = 1.0;
   double inverse_bucket_width_ = 1.0;
   std::vector<int> bucket_first_;
+  double last_bucket_ = 0.0;  ///< bucket_first_.size() - 1
 };
 
 /// The 2-D grid: two axes and a cell indexing with ghosts (row-major, x fastest).

@@ -151,8 +151,14 @@ void GasParticleCoupling::update_stencils(const ParcelSystem& parcels, std::size
   const std::size_t end = all ? n : std::min(count, n);
   stencils_.resize(n);
   const double w = cfg_.influence_width;
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t blocks = (end + kBlock - 1) / kBlock;
 #pragma omp parallel for schedule(static) if (end >= kParallelParcels)
-  for (std::size_t k = 0; k < end; ++k) stencils_[k] = deposit_stencil(grid_, parcels.x[k], parcels.y[k], w);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t k0 = b * kBlock;
+    deposit_stencils(grid_, parcels.x.data() + k0, parcels.y.data() + k0, w, stencils_.data() + k0,
+                     std::min(kBlock, end - k0));
+  }
   stencil_dem_steps_ = parcels.steps();
   stencil_permutations_ = parcels.data_permutations();
   planned_parcels_ = 0;  // the deposit plan was for the old stencils
@@ -366,9 +372,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
     const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
     // The batch's stencils, then each field at all of them (a vector loop per field).
     InterpolationBatch<kBatch> quads(grid_);
-    for (std::size_t q = 0; q < count; ++q) {
-      quads.push(interpolation_stencil(grid_, ps.x[k0 + q], ps.y[k0 + q], cfg_.interpolation));
-    }
+    quads.push_points(ps.x.data() + k0, ps.y.data() + k0, count, cfg_.interpolation);
     enum Sampled { kRho, kU, kV, kP, kT, kAlphaP, kVorticity, kDpdx, kDpdy, kFields };
     alignas(64) double value[kFields][kBatch];
     const Field2D* fields[kFields] = {g.rho, g.u, g.v, g.p, g.T, &alpha_p_, vort ? &vorticity_ : nullptr,

@@ -100,6 +100,79 @@ TEST(Interpolation, BatchGivesTheBitsOfOneStencilAtATime) {
   EXPECT_GT(uniform, 20);
 }
 
+TEST(Interpolation, PointBatchMakesTheStencilsOfInterpolationStencil) {
+  // InterpolationBatch::push_points locates a batch in one vector loop (AxisView::
+  // locate_bounded, falling back to Axis::locate where that is not exact: the second grid has
+  // a cell far smaller than its buckets). Its stencils must be interpolation_stencil's: the
+  // values of a field of cell labels and of a random field come out bit for bit the same.
+  for (const Grid2D& g : {stretched_grid(), Grid2D(Axis({0.0, 1e-9, 2e-9, 3e-9, 4e-9, 0.5, 1.0}, 2), Axis({0.0, 0.2, 0.7, 1.0}, 2))}) {
+    Field2D label(g), noise(g);
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    for (int j = -2; j < g.ny() + 2; ++j)
+      for (int i = -2; i < g.nx() + 2; ++i) {
+        label(i, j) = 1000.0 * i + j;
+        noise(i, j) = value(rng);
+      }
+    const double lx = g.x().end() - g.x().start(), ly = g.y().end() - g.y().start();
+    std::uniform_real_distribution<double> ux(g.x().start() - 0.1 * lx, g.x().end() + 0.1 * lx),
+        uy(g.y().start() - 0.1 * ly, g.y().end() + 0.1 * ly);
+    constexpr std::size_t kBatch = 64;
+    for (auto rule : {InterpolationRule::Triangle, InterpolationRule::Bilinear}) {
+      for (int round = 0; round < 50; ++round) {
+        std::array<double, kBatch> x{}, y{};
+        for (std::size_t q = 0; q < kBatch; ++q) {
+          x[q] = ux(rng);
+          y[q] = uy(rng);
+        }
+        if (round == 0) x[3] = g.x().face(1);  // on a face
+        InterpolationBatch<kBatch> batch(g);
+        batch.push_points(x.data(), y.data(), 40, rule);  // two calls fill one batch
+        batch.push_points(x.data() + 40, y.data() + 40, kBatch - 40, rule);
+        for (const Field2D* f : {&label, &noise}) {
+          std::array<double, kBatch> out{};
+          batch.apply(*f, out.data());
+          for (std::size_t q = 0; q < kBatch; ++q) {
+            const double expected = interpolation_stencil(g, x[q], y[q], rule).apply(*f);
+            ASSERT_EQ(std::memcmp(&out[q], &expected, sizeof(double)), 0)
+                << "point (" << x[q] << ", " << y[q] << "): " << out[q] << " vs " << expected;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(Deposition, BatchMakesTheStencilsOfDepositStencil) {
+  // deposit_stencils (vector loops, the coupling's) against deposit_stencil one point at a
+  // time, bit for bit, on a stretched grid and on one whose buckets hold several cells.
+  for (const Grid2D& g : {stretched_grid(), Grid2D(Axis({0.0, 1e-9, 2e-9, 3e-9, 4e-9, 0.5, 1.0}, 2), Axis({0.0, 0.2, 0.7, 1.0}, 2))}) {
+    std::mt19937 rng(17);
+    const double lx = g.x().end() - g.x().start(), ly = g.y().end() - g.y().start();
+    std::uniform_real_distribution<double> ux(g.x().start() - 0.05 * lx, g.x().end() + 0.05 * lx),
+        uy(g.y().start() - 0.05 * ly, g.y().end() + 0.05 * ly);
+    const std::size_t n = 1000;  // several blocks of 256
+    std::vector<double> x(n), y(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      x[k] = ux(rng);
+      y[k] = uy(rng);
+    }
+    for (double width : {0.0, 1e-4, 4e-4, 0.05}) {
+      std::vector<DepositStencil> batch(n);
+      deposit_stencils(g, x.data(), y.data(), width, batch.data(), n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const DepositStencil one = deposit_stencil(g, x[k], y[k], width);
+        ASSERT_EQ(batch[k].count, one.count) << "point " << k << ", width " << width;
+        for (int m = 0; m < one.count; ++m) {
+          EXPECT_EQ(batch[k].i[m], one.i[m]);
+          EXPECT_EQ(batch[k].j[m], one.j[m]);
+          EXPECT_EQ(std::memcmp(&batch[k].fraction[m], &one.fraction[m], sizeof(double)), 0);
+        }
+      }
+    }
+  }
+}
+
 TEST(Deposition, ConservesTheDepositedSum) {
   const Grid2D g = stretched_grid();
   std::mt19937 rng(3);
