@@ -78,12 +78,14 @@ void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1) {
   }
 }
 
-/// Zeroes columns [0, columns) of rows [0, rows) of the interior of f.
-void clear_rows(const Grid2D& g, Field2D& f, int rows, int columns) {
+/// Resets columns [0, columns) of rows [0, rows) of the interior of a per-cell array
+/// (indexed as the grid's fields) to T{}.
+template <class T>
+void clear_rows(const Grid2D& g, T* cells, int rows, int columns) {
   const int nx = std::min(columns, g.nx()), n_rows = std::min(rows, g.ny());
+  if (nx <= 0) return;
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(n_rows) * nx >= kParallelParcels)
-  for (int j = 0; j < n_rows; ++j)
-    for (int i = 0; i < nx; ++i) f(i, j) = 0.0;
+  for (int j = 0; j < n_rows; ++j) std::fill_n(cells + g.index(0, j), nx, T{});
 }
 
 }  // namespace
@@ -92,8 +94,8 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
                                          const GasConfig& gas, const DemConfig& dem)
     : grid_(grid), cfg_(config), gas_cfg_(gas), dem_cfg_(dem),
       particle_volume_(std::numbers::pi / 6.0 * std::pow(dem.particle_diameter, 3)),
-      models_(build_coupling_models(config)), props_(std::make_unique<GasProperties>(gas)), alpha_p_(grid), alpha_g_(grid, 1.0), src_x_(grid), src_y_(grid),
-      src_e_(grid), cell_drag_(grid), cell_heat_(grid), cell_mass_(grid), cell_heat_capacity_(grid) {
+      models_(build_coupling_models(config)), props_(std::make_unique<GasProperties>(gas)), alpha_p_(grid), alpha_g_(grid, 1.0),
+      exchange_(grid.size_with_ghosts()), relief_(grid.size_with_ghosts()) {
   if (needs_vorticity()) vorticity_ = Field2D(grid);
   if (cfg_.pressure_force) {
     dpdx_ = Field2D(grid);
@@ -215,7 +217,7 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
   last_reach_ = reach;
   deposit_columns_ = c;
   const std::size_t reaching = parcels_reaching(parcels, c);
-  clear_rows(grid_, alpha_p_, clear_to, c + 1);
+  clear_rows(grid_, alpha_p_.data(), clear_to, c + 1);
   update_stencils(parcels, reaching);
   plan_scatter(reaching);
   // Each cell sums its parcels in parcel order whatever the thread count (ParallelDeposit).
@@ -443,7 +445,7 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
   // The stepped parcels read the cells of columns [0, c]; those sum every parcel reaching them.
   const int c = active < ps.size() ? (active == 0 ? -1 : deposit_column_bound(active_x_max_)) : grid_.nx() - 1;
   const std::size_t reaching = c < 0 ? 0 : parcels_reaching(ps, c);
-  for (Field2D* f : {&cell_drag_, &cell_heat_, &cell_mass_, &cell_heat_capacity_}) clear_rows(grid_, *f, j1, c + 1);
+  clear_rows(grid_, relief_.data(), j1, c + 1);
   plan_scatter(reaching);
   const double* K_raw = ps.column(col_.drag_raw).data();
   const double* H_raw = ps.column(col_.heat_raw).data();
@@ -459,10 +461,11 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
     const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
     if (i > c) return;
     const double f = st.fraction[static_cast<std::size_t>(m)];
-    cell_drag_(i, j) += f * (n_real[k] * K_raw[k]);
-    cell_heat_(i, j) += f * (n_real[k] * H_raw[k]);
-    cell_mass_(i, j) += f * mass[k];
-    cell_heat_capacity_(i, j) += f * mass[k] * c_p;
+    ReliefCell& r = relief_[grid_.index(i, j)];
+    r.drag += f * (n_real[k] * K_raw[k]);
+    r.heat += f * (n_real[k] * H_raw[k]);
+    r.mass += f * mass[k];
+    r.heat_capacity += f * mass[k] * c_p;
   });
   const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
   const GasPrimitives g = gas.primitives();
@@ -472,13 +475,13 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
 #pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1) * nx >= kParallelParcels)
   for (int j = 0; j < j1; ++j) {
     for (int i = 0; i < nx; ++i) {
-      if (cell_mass_(i, j) == 0.0) continue;
+      ReliefCell& r = relief_[grid_.index(i, j)];
+      if (r.mass == 0.0) continue;
       const double m_gas = gas_mass_density(i, j) * grid_.area(i, j);
       const GasProperties::At th = props_->thermo((*g.T)(i, j));
       const double cv_gas = th.cp / th.gamma;
-      cell_drag_(i, j) = 1.0 / (1.0 + dt * cell_drag_(i, j) * (1.0 / m_gas + 1.0 / cell_mass_(i, j)));
-      cell_heat_(i, j) =
-          1.0 / (1.0 + dt * cell_heat_(i, j) * (1.0 / (m_gas * cv_gas) + 1.0 / cell_heat_capacity_(i, j)));
+      r.drag = 1.0 / (1.0 + dt * r.drag * (1.0 / m_gas + 1.0 / r.mass));
+      r.heat = 1.0 / (1.0 + dt * r.heat * (1.0 / (m_gas * cv_gas) + 1.0 / r.heat_capacity));
     }
   }
   const std::size_t n = active;
@@ -489,8 +492,9 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
     for (int m = 0; m < st.count; ++m) {
       const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
       const double f = st.fraction[static_cast<std::size_t>(m)];
-      drag_relief += f * cell_drag_(i, j);
-      heat_relief += f * cell_heat_(i, j);
+      const ReliefCell& r = relief_[grid_.index(i, j)];
+      drag_relief += f * r.drag;
+      heat_relief += f * r.heat;
     }
     K[k] *= drag_relief;
     H[k] *= heat_relief;
@@ -530,9 +534,7 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
   // Columns beyond deposit_columns_ had no source last step and have none now (only stepped
   // parcels exchange anything).
   const int columns = deposit_columns_ + 1;
-  clear_rows(grid_, src_x_, rows_touched_, columns);
-  clear_rows(grid_, src_y_, rows_touched_, columns);
-  clear_rows(grid_, src_e_, rows_touched_, columns);
+  clear_rows(grid_, exchange_.data(), rows_touched_, columns);
   const double* n_real = ps.n_real.data();
   scatter_.run(stencils_, [&](std::size_t k, int m) {
     const double energy = work[k] + heat[k];
@@ -542,9 +544,10 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
     const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
     if (i >= columns) return;
     const double w = d.fraction[static_cast<std::size_t>(m)] * n_real[k] / (grid_.area(i, j) * dt);
-    src_x_(i, j) += w * jx[k];
-    src_y_(i, j) += w * jy[k];
-    src_e_(i, j) += w * energy;
+    ExchangeCell& e = exchange_[grid_.index(i, j)];
+    e.x += w * jx[k];
+    e.y += w * jy[k];
+    e.energy += w * energy;
   });
   const int rows = rows_touched_;
   const int nx = columns;
@@ -561,9 +564,10 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
         sx(i, j) = sy(i, j) = se(i, j) = 0.0;
         continue;
       }
-      sx(i, j) = -src_x_(i, j);
-      sy(i, j) = -src_y_(i, j);
-      se(i, j) = -src_e_(i, j);
+      const ExchangeCell& e = exchange_[grid_.index(i, j)];
+      sx(i, j) = -e.x;
+      sy(i, j) = -e.y;
+      se(i, j) = -e.energy;
     }
   }
   gas.change_porosity(alpha_g_, 0, cleared_to_);
@@ -587,9 +591,10 @@ ExchangeTotals GasParticleCoupling::last_exchange(const ParcelSystem& ps) const 
   for (int j = 0; j < rows_touched_; ++j) {
     for (int i = 0; i < grid_.nx(); ++i) {
       const double area_dt = grid_.area(i, j) * last_dt_;
-      e.gas_impulse_x += src_x_(i, j) * area_dt;
-      e.gas_impulse_y += src_y_(i, j) * area_dt;
-      e.gas_energy += src_e_(i, j) * area_dt;
+      const ExchangeCell& cell = exchange_[grid_.index(i, j)];
+      e.gas_impulse_x += cell.x * area_dt;
+      e.gas_impulse_y += cell.y * area_dt;
+      e.gas_energy += cell.energy * area_dt;
     }
   }
   return e;

@@ -159,8 +159,18 @@ class GasParticleCoupling {
   Columns col_;
 
   Field2D alpha_p_, alpha_g_, vorticity_, dpdx_, dpdy_;
-  Field2D src_x_, src_y_, src_e_;
-  Field2D cell_drag_, cell_heat_, cell_mass_, cell_heat_capacity_;  ///< stiff_exchange_relief sums
+  /// Deposited exchange per cell (N/m^3, W/m^3; indexed as the grid's fields), side by side.
+  struct ExchangeCell {
+    double x = 0.0, y = 0.0, energy = 0.0;
+  };
+  std::vector<ExchangeCell> exchange_;
+  /// stiff_exchange_relief's sums per cell (indexed as the grid's fields), side by side: a
+  /// parcel's deposit adds to all four, and the relief then replaces drag and heat by the
+  /// cell's factors.
+  struct ReliefCell {
+    double drag = 0.0, heat = 0.0, mass = 0.0, heat_capacity = 0.0;
+  };
+  std::vector<ReliefCell> relief_;
   std::vector<DepositStencil> stencils_;  ///< parcel order, at the positions after the last DEM step
   ParallelDeposit scatter_;               ///< planned with the stencils
   long long stencil_dem_steps_ = -1;      ///< ParcelSystem::steps() when they were made
