@@ -45,6 +45,7 @@ runs=(
   "hexagonal|paper|particles.layer.arrangement=hexagonal"
   "xi2_none|paper|coupling.volume_fraction_correction=none"
   "nodegrid|paper|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.031875"
+  "influence250|paper|coupling.influence_width=2.5e-4"
   "kn500k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
   "kn100k|paper|coupling.magnus_coefficient=0 particles.contact.k_n=1.0e5 particles.contact.k_t=200"
   "kt10|paper|coupling.magnus_coefficient=0 particles.contact.k_t=10"
