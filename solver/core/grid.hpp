@@ -2,7 +2,6 @@
 // Rectilinear, optionally stretched 2-D grid with ghost layers.
 // The paper's mesh (section 3.1): uniform 250 um cells in the main region,
 // geometric stretching upstream (x < 0) and above y = 32 mm.
-#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>

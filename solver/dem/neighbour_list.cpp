@@ -196,12 +196,12 @@ void ParcelSystem::rebuild_neighbours() {
   // on both sides (a slow partner would not find them in its 3x3 block).
   const double min_cell = std::min(cell_dx_, cell_dy_);
   const std::size_t n_fast = fast_.size();
-  // In parallel over contiguous ranges of fast parcels, joined in order (thread-independent).
+  // In parallel over contiguous ranges of fast parcels, joined in order (thread-independent;
+  // every range is searched however many threads come).
   const int threads = n_fast >= 64 ? omp_get_max_threads() : 1;
   fast_pairs_by_thread_.resize(static_cast<std::size_t>(threads));
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const int t = omp_get_thread_num();
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+  for (int t = 0; t < threads; ++t) {
     std::vector<FastPair>& mine = fast_pairs_by_thread_[static_cast<std::size_t>(t)];
     mine.clear();
     const std::size_t f0 = n_fast * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
@@ -252,23 +252,24 @@ void ParcelSystem::rebuild_neighbours() {
     }
   };
 
-  // One search per parcel: each thread lists the partners of a contiguous range of parcels
-  // into its own buffer, then the buffers are joined in parcel order (the same list whatever
-  // the thread count) and the history of pairs listed before is carried over.
+  // One search per parcel: the parcels are cut into one contiguous range per thread, each
+  // range lists its partners into its own buffer, then the buffers are joined in parcel
+  // order (the same list whatever the thread count) and the history of pairs listed before
+  // is carried over.
   nbr_offset.resize(n + 1);
   nbr_offset[0] = 0;
-  const int list_threads = n >= kParallelMinimum ? std::max(1, omp_get_max_threads()) : 1;
-  list_by_thread_.resize(static_cast<std::size_t>(list_threads));
-  auto thread_range = [&](int t, std::size_t& i0, std::size_t& i1) {
-    i0 = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(list_threads);
-    i1 = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(list_threads);
+  const int ranges = n >= kParallelMinimum ? std::max(1, omp_get_max_threads()) : 1;
+  list_by_range_.resize(static_cast<std::size_t>(ranges));
+  auto range = [&](int t, std::size_t& i0, std::size_t& i1) {
+    i0 = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(ranges);
+    i1 = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(ranges);
   };
-#pragma omp parallel num_threads(list_threads) if (list_threads > 1)
-  {
-    const int t = omp_get_thread_num();
+  // Over the ranges, not the threads: every range is listed however many threads come.
+#pragma omp parallel for schedule(static, 1) num_threads(ranges) if (ranges > 1)
+  for (int t = 0; t < ranges; ++t) {
     std::size_t i0 = 0, i1 = 0;
-    thread_range(t, i0, i1);
-    std::vector<ListedPartner>& mine = list_by_thread_[static_cast<std::size_t>(t)];
+    range(t, i0, i1);
+    std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
     mine.clear();
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = mine.size();
@@ -281,12 +282,11 @@ void ParcelSystem::rebuild_neighbours() {
   nbr_index.resize(slots);
   nbr_image.resize(slots);
   nbr_delta.resize(slots);
-#pragma omp parallel num_threads(list_threads) if (list_threads > 1)
-  {
-    const int t = omp_get_thread_num();
+#pragma omp parallel for schedule(static, 1) num_threads(ranges) if (ranges > 1)
+  for (int t = 0; t < ranges; ++t) {
     std::size_t i0 = 0, i1 = 0;
-    thread_range(t, i0, i1);
-    const std::vector<ListedPartner>& mine = list_by_thread_[static_cast<std::size_t>(t)];
+    range(t, i0, i1);
+    const std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
     const auto first = static_cast<std::size_t>(nbr_offset[i0]);
     for (std::size_t k = 0; k < mine.size(); ++k) {
       nbr_index[first + k] = mine[k].j;

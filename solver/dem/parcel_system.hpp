@@ -297,7 +297,7 @@ class ParcelSystem {
     std::int32_t j;
     std::int8_t image;
   };
-  std::vector<std::vector<ListedPartner>> list_by_thread_;  ///< rebuild scratch, one per thread
+  std::vector<std::vector<ListedPartner>> list_by_range_;  ///< rebuild scratch, one per range of parcels (one per thread)
   double radius_max_ = 0.0, cutoff_ = 0.0;
 
   // Rebuild scratch (kept to avoid reallocation).
