@@ -108,6 +108,8 @@ for r in "${runs[@]}"; do
   if [ -z "$only" ] || [[ ",$only," == *",$name,"* ]]; then selected+=("$r"); fi
 done
 start=$SECONDS
-printf '%s\n' "${selected[@]}" | tr '|' ' ' | xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _
+# One line per run; trailing blanks stripped: xargs -L would join a line ending in one (a run
+# without overrides, like "paper") with the next.
+printf '%s\n' "${selected[@]}" | tr '|' ' ' | sed 's/[[:space:]]*$//' | xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _
 echo "runs: $((SECONDS - start)) s"
 /usr/bin/python3 "$root/analysis/paper_results.py" "$outroot" --docs "$root/docs/results" --results-md "$root/docs/results.md"
