@@ -113,13 +113,38 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
     faces_[static_cast<std::size_t>(ng_ - g)] = faces_[static_cast<std::size_t>(ng_ - g + 1)] - w_left;
     faces_[static_cast<std::size_t>(ng_ + n_ + g)] = faces_[static_cast<std::size_t>(ng_ + n_ + g - 1)] + w_right;
   }
-  centers_.resize(total);
-  widths_.resize(total);
-  for (std::size_t k = 0; k < total; ++k) {
-    centers_[k] = 0.5 * (faces_[k] + faces_[k + 1]);
-    widths_[k] = faces_[k + 1] - faces_[k];
-    if (!(widths_[k] > 0.0)) throw std::invalid_argument("axis nodes must increase strictly");
+  finish();
+}
+
+Axis Axis::slice(int i0, int i1) const {
+  if (i0 < 0 || i1 > n_ || i1 - i0 < 1) throw std::invalid_argument("axis slice: cells [i0, i1) must lie inside the axis");
+  Axis a;
+  a.n_ = i1 - i0;
+  a.ng_ = ng_;
+  // The slice's ghosts are this axis's cells beyond its ends (its own ghosts at a true end):
+  // the same node values, so every width and centre of the slice has the bits of the whole.
+  a.faces_.assign(faces_.begin() + i0, faces_.begin() + i1 + 2 * ng_ + 1);
+  a.interior_faces_.assign(faces_.begin() + i0 + ng_, faces_.begin() + i1 + ng_ + 1);
+  a.finish_from(*this, i0);
+  return a;
+}
+
+void Axis::finish_from(const Axis& whole, int i0) {
+  finish_geometry();
+  // Derivative stencils are the whole axis's (one-sided only at its true ends), shifted.
+  if (whole.n_ >= 3) {
+    derivative_.resize(static_cast<std::size_t>(n_));
+    for (int k = 0; k < n_; ++k) {
+      DerivativeStencil d = whole.derivative_stencil(k + i0);
+      d.first -= i0;
+      derivative_[static_cast<std::size_t>(k)] = d;
+    }
   }
+  finish_buckets();
+}
+
+void Axis::finish() {
+  finish_geometry();
   if (n_ >= 3) {
     derivative_.resize(static_cast<std::size_t>(n_));
     for (int k = 0; k < n_; ++k) {
@@ -129,6 +154,21 @@ Axis::Axis(std::vector<double> interior_nodes, int ghosts)
       derivative_[static_cast<std::size_t>(k)] = {first, w.w0, w.w2};
     }
   }
+  finish_buckets();
+}
+
+void Axis::finish_geometry() {
+  const auto total = static_cast<std::size_t>(n_ + 2 * ng_);
+  centers_.resize(total);
+  widths_.resize(total);
+  for (std::size_t k = 0; k < total; ++k) {
+    centers_[k] = 0.5 * (faces_[k] + faces_[k + 1]);
+    widths_[k] = faces_[k + 1] - faces_[k];
+    if (!(widths_[k] > 0.0)) throw std::invalid_argument("axis nodes must increase strictly");
+  }
+}
+
+void Axis::finish_buckets() {
   const double length = interior_faces_.back() - interior_faces_.front();
   const std::size_t buckets =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(length / min_width())), 1, 4 * static_cast<std::size_t>(n_));
@@ -153,6 +193,8 @@ double Axis::min_width() const {
 Grid2D::Grid2D(Axis x, Axis y) : x_(std::move(x)), y_(std::move(y)) {
   if (x_.ghosts() != y_.ghosts()) throw std::invalid_argument("axes need equal ghost counts");
 }
+
+Grid2D Grid2D::slice_x(int i0, int i1) const { return Grid2D(x_.slice(i0, i1), y_); }
 
 Grid2D::Grid2D(const AxisSpec& x, const AxisSpec& y, int ghosts)
     : Grid2D(Axis(build_axis_nodes(x), ghosts), Axis(build_axis_nodes(y), ghosts)) {}

@@ -113,8 +113,18 @@ class Axis {
   const DerivativeStencil& derivative_stencil(int k) const {
     return derivative_[static_cast<std::size_t>(k)];
   }
+  /// Cells [i0, i1) of this axis as an axis of their own (an MPI rank's slab): its ghost
+  /// cells are this axis's neighbouring cells (or its ghosts at a true end), so every face,
+  /// width and centre has the same bits, and its derivative stencils are this axis's, shifted
+  /// (a stencil may then reach into the slice's ghosts).
+  Axis slice(int i0, int i1) const;
 
  private:
+  void finish();
+  void finish_from(const Axis& whole, int i0);
+  void finish_geometry();
+  void finish_buckets();
+
   int n_ = 0;
   int ng_ = 0;
   std::vector<double> faces_, centers_, widths_, interior_faces_;
@@ -151,6 +161,8 @@ class Grid2D {
   std::size_t index(int i, int j) const {
     return static_cast<std::size_t>((j + ghosts()) * stride() + (i + ghosts()));
   }
+  /// Columns [i0, i1) with every row: an MPI rank's x-slab (Axis::slice).
+  Grid2D slice_x(int i0, int i1) const;
   /// Cell area (m^2), i.e. the cell volume per metre of depth.
   double area(int i, int j) const { return x_.width(i) * y_.width(j); }
 

@@ -15,6 +15,7 @@
 #include "solver/gas/flux_rows.hpp"
 #include "solver/gas/muscl.hpp"
 #include "solver/gas/shock_relations.hpp"
+#include "solver/gas/gas_halo.hpp"
 #include "solver/gas/rest_ranges.hpp"
 #include "solver/gas/slau2.hpp"
 #include "solver/gas/stage_update.hpp"
@@ -117,6 +118,14 @@ struct GasSolver::Impl {
   /// The state was written from outside (initialize, a checkpoint, a test): check it before
   /// the next step. The solver's own updates check every cell they change.
   bool externally_modified = true;
+  /// On a slab of a decomposed grid: fills the shared ghost columns (null: the whole grid).
+  GasHalo* halo = nullptr;
+  bool own_left = true, own_right = true;  ///< boundary conditions at this grid's x-ends
+  int first_column = 0;                    ///< index of column 0 in the whole grid
+  /// On a slab with skipping: 1 in a row's edge columns when the previous stage updated cells
+  /// there, exchanged with the primitives; its ghost columns then say where the neighbour's
+  /// stage changed cells this slab's stencils read (widen_active_ranges).
+  Field2D edge_activity;
 
   Impl(const Grid2D& g, const GasConfig& c)
       : grid(g), config(c), thermo(make_thermo(c.thermo)), muscl(muscl_settings(c.scheme)),
@@ -228,12 +237,14 @@ struct GasSolver::Impl {
     const BoundaryConfig& b = config.boundary;
     const MirrorSigns sl = mirror_signs(b.left, true), sr = mirror_signs(b.right, true);
     for (int g = 0; g < ng; ++g) {
-      if (b.left == BoundaryKind::Inflow) {
+      if (!own_left) {
+      } else if (b.left == BoundaryKind::Inflow) {
         set_ghost(at(-1 - g, j), inflow_left[static_cast<std::size_t>(j)]);
       } else {
         copy_ghost(at(-1 - g, j), at(low_side_source(b.left, g, nx), j), sl);
       }
-      if (b.right == BoundaryKind::Inflow) {
+      if (!own_right) {
+      } else if (b.right == BoundaryKind::Inflow) {
         set_ghost(at(nx + g, j), inflow_right[static_cast<std::size_t>(j)]);
       } else {
         copy_ghost(at(nx + g, j), at(high_side_source(b.right, g, nx), j), sr);
@@ -267,8 +278,8 @@ struct GasSolver::Impl {
       for (int g = 0; g < ng; ++g) {
         const int l = b.left == BoundaryKind::Periodic ? low_side_source(b.left, g, nx) : std::min(g, nx - 1);
         const int r = b.right == BoundaryKind::Periodic ? high_side_source(b.right, g, nx) : std::max(nx - 1 - g, 0);
-        alpha(-1 - g, j) = alpha(l, j);
-        alpha(nx + g, j) = alpha(r, j);
+        if (own_left) alpha(-1 - g, j) = alpha(l, j);
+        if (own_right) alpha(nx + g, j) = alpha(r, j);
       }
     }
     for (int i = -ng; i < nx + ng; ++i) {
@@ -278,6 +289,10 @@ struct GasSolver::Impl {
         alpha(i, -1 - g) = alpha(i, lo);
         alpha(i, ny + g) = alpha(i, hi);
       }
+    }
+    if (halo != nullptr) {
+      Field2D* const fields[] = {&alpha};
+      halo->exchange_columns(fields);
     }
   }
 
@@ -615,6 +630,23 @@ struct GasSolver::Impl {
           lo = std::min(lo, widened_lo_[k] - ng);
           hi = std::max(hi, widened_hi_[k] + ng);
         }
+        // A slab's edge cells read the neighbour's edge columns: where its previous stage
+        // changed them (within the stencil's rows), they are updated too.
+        if (halo != nullptr) {
+          bool left = false, right = false;
+          for (int r = std::max(j - ng, 0); r <= std::min(j + ng, ny - 1); ++r) {
+            left = left || (!own_left && edge_activity(-1, r) != 0.0);
+            right = right || (!own_right && edge_activity(nx, r) != 0.0);
+          }
+          if (left) {
+            lo = std::min(lo, 0);
+            hi = std::max(hi, std::min(ng, nx));
+          }
+          if (right) {
+            lo = std::min(lo, std::max(nx - ng, 0));
+            hi = std::max(hi, nx);
+          }
+        }
         lo = std::max(lo, 0);
         hi = std::min(hi, nx);
         row_lo[static_cast<std::size_t>(j)] = lo < hi ? lo : 0;
@@ -634,11 +666,47 @@ struct GasSolver::Impl {
     for (int i = -ng; i < nx + ng; ++i) fill_y_ghosts_column(i);
   }
 
+  /// Every ghost of the primitive fields, outside a parallel region: the boundary conditions,
+  /// then (on a slab of a decomposed grid) the columns shared with the neighbouring slabs.
+  void fill_ghosts() {
+#pragma omp parallel if (threaded)
+    fill_ghosts_parallel();
+    exchange_primitive_columns();
+  }
+  void exchange_primitive_columns() {
+    if (halo == nullptr) return;
+    if (skip_resting) {
+      Field2D* const fields[] = {&rho, &u, &v, &p, &T, &edge_activity};
+      halo->exchange_columns(fields);
+    } else {
+      Field2D* const fields[] = {&rho, &u, &v, &p, &T};
+      halo->exchange_columns(fields);
+    }
+  }
+
+  /// Marks the edge columns of each row that this stage's ranges reach (see edge_activity).
+  void mark_edge_activity() {
+    for (int j = 0; j < ny; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      const bool active = row_lo[k] < row_hi[k];
+      const double left = active && row_lo[k] < ng ? 1.0 : 0.0;
+      const double right = active && row_hi[k] > nx - ng ? 1.0 : 0.0;
+      for (int g = 0; g < ng; ++g) {
+        edge_activity(g, j) = left;
+        edge_activity(nx - 1 - g, j) = right;
+      }
+    }
+  }
+
   template <class Th>
   void stage(const Th& th, double dt, double c_new) {
+    if (halo != nullptr) {
+      if (skip_resting) mark_edge_activity();  // the previous stage's ranges
+      fill_ghosts();
+    }
 #pragma omp parallel if (threaded)
     {
-      fill_ghosts_parallel();
+      if (halo == nullptr) fill_ghosts_parallel();
       if (c_new == 1.0) {
         compute_active_ranges();
       } else {
@@ -652,13 +720,20 @@ struct GasSolver::Impl {
   }
 
   void throw_on_fault() const {
+    std::string message = fault_message();
+    if (halo != nullptr) message = halo->first_failure(message);
+    if (!message.empty()) throw NumericalFailure(message);
+  }
+
+  /// The first faulty row's cell, described ("" when no row has one).
+  std::string fault_message() const {
     for (int j = 0; j < ny; ++j) {
       const int i = fault_i[static_cast<std::size_t>(j)];
       if (i < 0) continue;
       const std::size_t c = at(i, j);
       std::ostringstream m;
       m.precision(6);
-      m << "gas cell (i, j) = (" << i << ", " << j << ") at x = " << grid.x().center(i)
+      m << "gas cell (i, j) = (" << i + first_column << ", " << j << ") at x = " << grid.x().center(i)
         << " m, y = " << grid.y().center(j) << " m: ";
       switch (fault_kind[static_cast<std::size_t>(j)]) {
         case CellFault::NotFinite:
@@ -672,8 +747,9 @@ struct GasSolver::Impl {
           m << "pressure p = " << p.data()[c] << " Pa is not positive (T = " << T.data()[c] << " K)";
           break;
       }
-      throw NumericalFailure(m.str());
+      return m.str();
     }
+    return {};
   }
 
   template <class Th>
@@ -689,6 +765,7 @@ struct GasSolver::Impl {
       }
       fill_ghosts_parallel();
     }
+    exchange_primitive_columns();
   }
 
   PrimitiveRow primitive_row(int j, int i0, int i1) {
@@ -744,8 +821,7 @@ struct GasSolver::Impl {
       }
     }
     fill_porosity_ghosts();
-#pragma omp parallel if (threaded)
-    fill_ghosts_parallel();
+    fill_ghosts();
     throw_on_fault();
   }
 
@@ -790,8 +866,7 @@ struct GasSolver::Impl {
     stage(th, dt, 1.0);
     stage(th, dt, 0.25);
     stage(th, dt, 2.0 / 3.0);
-#pragma omp parallel if (threaded)
-    fill_ghosts_parallel();
+    fill_ghosts();
   }
 
   template <class Th>
@@ -858,8 +933,7 @@ struct GasSolver::Impl {
     record(inflow_right, ny, [&](int j) { return state_at(nx - 1, j); });
     record(inflow_bottom, nx, [&](int i) { return state_at(i, 0); });
     record(inflow_top, nx, [&](int i) { return state_at(i, ny - 1); });
-#pragma omp parallel if (threaded)
-    fill_ghosts_parallel();
+    fill_ghosts();
   }
 };
 
@@ -882,6 +956,16 @@ double GasSolver::stable_dt() const {
 
 void GasSolver::step(double dt) {
   std::visit([&](const auto& th) { impl_->rk3_step(th, dt); }, impl_->thermo);
+}
+
+void GasSolver::set_halo(GasHalo* halo) {
+  Impl& m = *impl_;
+  m.halo = halo;
+  m.own_left = halo == nullptr || halo->owns_left_boundary();
+  m.own_right = halo == nullptr || halo->owns_right_boundary();
+  m.first_column = halo == nullptr ? 0 : halo->first_column();
+  m.edge_activity = halo == nullptr ? Field2D() : Field2D(m.grid, 0.0);
+  m.externally_modified = true;
 }
 
 const Grid2D& GasSolver::grid() const { return impl_->grid; }

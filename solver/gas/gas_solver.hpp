@@ -18,6 +18,8 @@
 
 namespace dustlift {
 
+class GasHalo;
+
 /// Read-only primitive gas fields (interior cells valid; ghosts as last filled).
 struct GasPrimitives {
   const Field2D* rho = nullptr;
@@ -39,6 +41,12 @@ class GasSolver {
   ~GasSolver();
   GasSolver(GasSolver&&) noexcept;
   GasSolver& operator=(GasSolver&&) noexcept;
+
+  /// Makes this solver one slab of a decomposed grid (issue 12; null: the whole grid). Its
+  /// grid is then the slab (Grid2D::slice_x); the halo fills the ghost columns it shares with
+  /// its neighbours at every stage and makes fault checks collective. Set it before
+  /// initialize(); stable_dt() stays local (the caller reduces it over the ranks).
+  void set_halo(GasHalo* halo);
 
   void initialize(const InitialCondition& ic);
   double stable_dt() const;
