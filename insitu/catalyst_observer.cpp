@@ -112,6 +112,11 @@ class CatalystObserver final : public Observer {
     if (config_.interval > 0.0) next_ = first_multiple_after(view.time, config_.interval);
   }
   void on_output(const StateView&) override {}
+  bool reads_step(const StateView& view) const override {
+    if (at_end(view)) return false;
+    if (config_.interval > 0.0) return view.time >= multiple_time(next_, config_.interval);
+    return view.step % config_.interval_steps == 0;
+  }
   void on_step(const StateView& view) override {
     if (at_end(view)) return;  // on_finish delivers it, to every pipeline
     if (config_.interval > 0.0) {

@@ -55,6 +55,7 @@ class BandForceObserver final : public Observer {
     if (!parcels_of_) throw std::invalid_argument("BandForceObserver: no parcel adaptor");
     if (options_.bands.empty()) throw std::invalid_argument("BandForceObserver: no band");
   }
+  bool reads_step(const StateView&) const override { return options_.sample_every_step; }
   void on_step(const StateView& view) override {
     if (options_.sample_every_step) sample(view);
   }

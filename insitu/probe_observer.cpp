@@ -20,9 +20,11 @@ class ProbeObserver final : public Observer {
     sample(view);
     write(view);
   }
+  bool reads_step(const StateView& view) const override {
+    return options_.interval > 0.0 ? view.time >= multiple_time(next_sample_, options_.interval) : true;
+  }
   void on_step(const StateView& view) override {
-    const bool due = options_.interval > 0.0 ? view.time >= multiple_time(next_sample_, options_.interval) : true;
-    if (due) sample(view);
+    if (reads_step(view)) sample(view);
   }
   void on_output(const StateView& view) override { write(view); }
   void on_finish(const StateView& view) override {

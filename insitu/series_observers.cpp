@@ -96,6 +96,7 @@ class ShockPositionObserver final : public Observer {
   explicit ShockPositionObserver(ShockPositionOptions options)
       : options_(options), table_("shock_position", {{"time", "s"}, {"x", "m"}}) {}
 
+  bool reads_step(const StateView&) const override { return options_.every_step; }
   void on_step(const StateView& view) override {
     if (options_.every_step) sample(view);
   }

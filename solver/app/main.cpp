@@ -22,6 +22,7 @@
 #include "solver/app/info.hpp"
 #include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
+#include "solver/parallel/communicator.hpp"
 #include "solver/app/sweep.hpp"
 #include "solver/app/version.hpp"
 #include "solver/core/errors.hpp"
@@ -87,7 +88,8 @@ const std::string& text_of(const Snapshot& s, const std::string& name, const std
 
 /// `run`: a scene (or a checkpoint's scene) into its output folder.
 int run_command(std::string scene_path, const std::string& restart_path, std::string out_dir,
-                const std::vector<std::string>& overrides, bool overwrite, const std::string& command_line) {
+                const std::vector<std::string>& overrides, bool overwrite, const std::string& command_line,
+                const Communicator* comm) {
   if (scene_path.empty() == restart_path.empty()) {
     throw SceneError("run: give either a scene file or --restart CHECKPOINT (one of them)");
   }
@@ -118,6 +120,7 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
   options.restart_folder = restart_folder;
   options.overwrite = overwrite;
   options.command_line = command_line;
+  options.comm = comm;
   return run_scene(scene, out_dir, options).exit_code;  // exit 4 printed how to continue
 }
 
@@ -127,6 +130,14 @@ int main(int argc, char** argv) {
   // Threads wait passively after a short spin unless the user chose a policy
   // (solver/core/wait_policy.hpp); libgomp reads it before main, hence the restart.
   reexec_with_default_wait_policy(argv);
+  // `mpirun -np N dustlift run SCENE`: N ranks, one x-slab each (issue 12; docs/parallel.md).
+  const ParallelSession mpi(argc, argv);
+  const std::unique_ptr<Communicator> world = make_world_communicator();
+  const bool several = world->size() > 1;
+  // Every rank meets the same bad input; one of them says so.
+  const auto error = [&](const std::string& text) {
+    if (world->is_root()) std::cerr << text << "\n";
+  };
   CLI::App app{"dustlift: 2-D compressible CFD-DEM solver for shock-induced dust lifting"};
   app.set_version_flag("--version", std::string("dustlift ") + code_version());
   app.require_subcommand(1);
@@ -177,12 +188,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
+    const int code = world->is_root() ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
     return code == 0 ? 0 : kExitBadInput;
   }
   if (threads > 0) omp_set_num_threads(threads);
 
   try {
+    if (several && !run->parsed()) {
+      throw SceneError(fmt::format("only `dustlift run` runs on several MPI ranks ({} here); start `{}` without mpirun",
+                                   world->size(), info->parsed() ? "info" : "sweep"));
+    }
     if (info->parsed()) {
       const Scene scene = load_scene(scene_path, overrides);
       const Simulation sim(scene);
@@ -199,22 +214,29 @@ int main(int argc, char** argv) {
       if (sweep_cmd->count("--lift-threshold") > 0) definition.lift_threshold = sweep.lift_threshold;
       return run_sweep(definition, out_dir, SweepOptions{threads, overwrite, command_line});
     }
-    return run_command(scene_path, restart_path, out_dir, overrides, overwrite, command_line);
+    return run_command(scene_path, restart_path, out_dir, overrides, overwrite, command_line,
+                       several ? world.get() : nullptr);
   } catch (const SceneError& e) {
-    std::cerr << "dustlift: error: " << e.what() << "\n";
+    error(std::string("dustlift: error: ") + e.what());
     return kExitBadInput;
   } catch (const CheckpointError& e) {
-    std::cerr << "dustlift: error: checkpoint: " << e.what() << "\n";
+    error(std::string("dustlift: error: checkpoint: ") + e.what());
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "dustlift: error: " << e.what() << "\n";
+    error(std::string("dustlift: error: ") + e.what());
     return kExitBadInput;
   } catch (const NumericalFailure& e) {
-    std::cerr << "dustlift: numerical failure: " << e.what() << "\n";
+    error(std::string("dustlift: numerical failure: ") + e.what());
     return kExitNumerical;
   } catch (const std::bad_alloc&) {
     // The resource checks of the scene estimate the memory beforehand; this is what they missed.
     std::cerr << "dustlift: error: out of memory while setting up the run (a smaller grid or fewer parcels)\n";
+    if (several) world->abort(kExitBadInput);
     return kExitBadInput;
+  } catch (const std::exception& e) {
+    // Not one every rank meets (a file rank 0 could not write): the others would wait for it.
+    std::cerr << "dustlift: error: " << e.what() << "\n";
+    if (several) world->abort(1);
+    return 1;
   }
 }

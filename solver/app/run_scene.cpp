@@ -31,8 +31,10 @@ namespace {
 /// restart continues the run in its folder).
 class Log {
  public:
-  Log(const fs::path& p, bool echo, bool append)
-      : file_(p, append ? std::ios::app : std::ios::trunc), echo_(echo) {}
+  /// An empty path: no file (the ranks other than 0 of a decomposed run log nothing).
+  Log(const fs::path& p, bool echo, bool append) : echo_(echo) {
+    if (!p.empty()) file_.open(p, append ? std::ios::app : std::ios::trunc);
+  }
   void line(const std::string& s) {
     if (echo_) std::cerr << s << "\n";
     if (file_) file_ << s << "\n" << std::flush;
@@ -73,13 +75,31 @@ std::string format_duration(double s) {
 RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOptions& options) {
   const bool continuing = options.restart != nullptr && same_folder(out_dir, options.restart_folder);
   const FolderUse use = continuing ? FolderUse::Continue : options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh;
-  check_output_folder(out_dir, use);
-  Simulation sim(scene);  // validates the whole setup before anything is written
+  const Communicator* comm = options.comm != nullptr && options.comm->size() > 1 ? options.comm : nullptr;
+  const bool root = comm == nullptr || comm->is_root();
+  if (comm == nullptr) {
+    check_output_folder(out_dir, use);
+  } else {
+    // Rank 0 checks; every rank stops with its verdict before any collective step.
+    std::string problem;
+    if (root) {
+      try {
+        check_output_folder(out_dir, use);
+      } catch (const std::exception& e) {
+        problem = e.what();
+      }
+    }
+    problem = comm->first_nonempty(problem);
+    if (!problem.empty()) throw SceneError(problem);
+  }
+  Simulation sim(scene, comm);  // validates the whole setup before anything is written
   sim.set_provenance({code_version(), options.command_line});
-  if (options.extra_observers) {
+  if (root && options.extra_observers) {
     for (auto& o : options.extra_observers()) sim.add_observer(std::move(o));
   }
-  for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
+  if (root) {
+    for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
+  }
   if (options.restart != nullptr) {
     try {
       sim.restore(*options.restart, options.restart_folder);
@@ -87,15 +107,16 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
       throw CheckpointError(options.scene_label + ": does not fit its scene: " + e.what());
     }
   }
-  prepare_output_folder(out_dir, use);
-  {
+  if (root) {
+    prepare_output_folder(out_dir, use);
     std::ofstream f(fs::path(out_dir) / "scene.resolved.toml");
     f << resolved_scene_file(scene, options);
   }
-  Log log(fs::path(out_dir) / "run.log", options.echo_log, continuing);
+  Log log(root ? fs::path(out_dir) / "run.log" : fs::path(), root && options.echo_log, continuing);
   log.line(fmt::format("dustlift {}", code_version()));
   log.line(fmt::format("command: {}", options.command_line));
-  log.line(fmt::format("dustlift run {} -> {} ({} threads)", options.scene_label, out_dir, omp_get_max_threads()));
+  log.line(fmt::format("dustlift run {} -> {} ({} threads{})", options.scene_label, out_dir, omp_get_max_threads(),
+                       comm != nullptr ? fmt::format(" per rank, {} MPI ranks", comm->size()) : std::string()));
   log.line("  " + wait_policy_description());
   if (options.restart != nullptr) {
     log.line(fmt::format("  restarted at t = {:.6e} s, step {}{}", sim.time(), sim.step(),
@@ -108,14 +129,18 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
              "the new end (end times that are multiples of output.interval continue bit for bit)");
   }
   const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
-  sim.set_checkpoint_writer([&](const Simulation& s) { write_checkpoint(checkpoint_path, s.snapshot()); });
+  // Every rank takes part in the snapshot (rank 0 gathers the whole grid); rank 0 writes it.
+  sim.set_checkpoint_writer([&](const Simulation& s) {
+    const Snapshot snap = s.snapshot();
+    if (root) write_checkpoint(checkpoint_path, snap);
+  });
   for (const auto& e : sim.enabled_effects()) log.line("  " + e);
   if (const ParcelSystem* p = sim.parcels()) {
     log.line("  " + describe_layer(scene.particles));
     if (layer_settles(scene.particles.layer)) log.line("  " + describe_bed(*p, scene.particles.layer));
   }
   sim.set_log([&](const std::string& s) { log.line(s); });
-  sim.set_progress_callback([&](const Progress& p) {
+  if (root) sim.set_progress_callback([&](const Progress& p) {
     log.line(fmt::format("t = {:.4e} s ({:5.1f}%)  step {}  dt = {:.3e} s  wall {}  ETA {}", p.time,
                          100.0 * p.time / p.end_time, p.step, p.dt, format_duration(p.wall_seconds),
                          format_duration(p.eta_seconds)));
@@ -150,7 +175,7 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   } else if (outcome.exit_code == kExitSuccess) {
     log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(), sim.step(),
                          outcome.wall_seconds));
-    log.line(sim.work_summary());
+    log.line(sim.work_summary());  // collective: every rank's cell updates
   }
   return outcome;
 }

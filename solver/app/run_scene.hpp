@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/parallel/communicator.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
 #include "solver/sim/snapshot.hpp"
@@ -43,6 +44,9 @@ struct RunOptions {
   std::string command_line;           ///< recorded in run.log, scene.resolved.toml and the outputs
   /// Observers to add before the output writers (called once; they see every step first).
   std::function<std::vector<std::unique_ptr<Observer>>()> extra_observers;
+  /// Several MPI ranks (issue 12): every rank calls run_scene; rank 0 checks and writes the
+  /// folder, the log, the outputs and the checkpoints. Null or one rank: the serial run.
+  const Communicator* comm = nullptr;
 };
 
 /// Checks the output folder (a fresh run: missing or empty, or --overwrite of an earlier run's

@@ -48,6 +48,10 @@ class Observer {
   virtual void on_output(const StateView& view) = 0;
   /// Called after every step; keep it cheap (filters that need every step use it).
   virtual void on_step(const StateView&) {}
+  /// Whether on_step will read the state at this step (view.time and view.step are current,
+  /// the fields may not be): a decomposed run gathers the whole grid on rank 0 only for a
+  /// step some observer reads. An observer that overrides on_step must say when it reads.
+  virtual bool reads_step(const StateView&) const { return false; }
   /// Called once after the last step of a run that reached its end (or step limit); not
   /// after an interruption (the next segment continues the same series).
   virtual void on_finish(const StateView& view) { on_output(view); }

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "solver/core/errors.hpp"
+#include "solver/parallel/slab_halo.hpp"
+#include "solver/scene/table_reader.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/sim/time_targets.hpp"
 
@@ -18,12 +20,38 @@ std::string fmt_number(double v) {
 }
 }  // namespace
 
-Simulation::Simulation(const Scene& scene)
-    : scene_(scene), grid_(scene.grid.x, scene.grid.y, kGhostLayers) {
+Simulation::Simulation(const Scene& scene, const Communicator* comm)
+    : scene_(scene), whole_grid_(scene.grid.x, scene.grid.y, kGhostLayers), comm_(comm) {
   GasConfig gas_config = scene_.gas;
   gas_config.skip_resting_cells = scene_.run.skip_at_rest;
   gas_config.rest_tolerance = scene_.run.rest_tolerance;
-  gas_ = std::make_unique<GasSolver>(grid_, gas_config);
+  decomposed_ = comm_ != nullptr && comm_->size() > 1;
+  layout_.bounds = {0, whole_grid_.nx()};
+  layout_.periodic_x = scene_.gas.boundary.left == BoundaryKind::Periodic;
+  if (!decomposed_) {
+    grid_ = whole_grid_;
+    gas_ = std::make_unique<GasSolver>(grid_, gas_config);
+  } else {
+    if (scene_.particles.enabled) {
+      throw SceneError(scene_.source_file + ": [particles] on " + std::to_string(comm_->size()) +
+                       " MPI ranks: the decomposition runs gas-only scenes so far (issue 12); run it on one rank");
+    }
+    if (scene_.run.rest_tolerance > 0.0) {
+      // The rest references are each slab's own: exact skipping does not depend on them, a
+      // tolerance would (docs/parallel.md).
+      throw SceneError(scene_.source_file + ": key 'run.rest_tolerance' > 0 needs one MPI rank (it makes the "
+                       "results depend on the decomposition); set it to 0");
+    }
+    // Cost of a column: its cells (the parcels' weight joins when particles do).
+    const std::vector<double> cost(static_cast<std::size_t>(whole_grid_.nx()), static_cast<double>(whole_grid_.ny()));
+    layout_.bounds = balanced_slabs(cost, comm_->size(), kGhostLayers);
+    layout_.rank = comm_->rank();
+    grid_ = whole_grid_.slice_x(layout_.first_column(), layout_.end_column());
+    gas_ = std::make_unique<GasSolver>(grid_, gas_config);
+    halo_ = std::make_unique<SlabHalo>(*comm_, layout_, grid_);
+    gas_->set_halo(halo_.get());
+    if (comm_->is_root()) whole_gas_ = std::make_unique<GasSolver>(whole_grid_, gas_config);
+  }
   gas_->initialize(scene_.initial);
   if (scene_.particles.enabled) {
     parcels_ = std::make_unique<ParcelSystem>(make_layer_system(scene_.particles));
@@ -34,6 +62,44 @@ Simulation::Simulation(const Scene& scene)
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::gather_gas(bool with_sources) const {
+  if (!decomposed_) return;
+  GasSolver& local = *gas_;
+  std::vector<Field2D*> fields;
+  for (int k = 0; k < 4; ++k) fields.push_back(&local.conserved(k));
+  for (int k = 0; k < 5; ++k) fields.push_back(&local.primitive_field(k));
+  fields.push_back(&local.porosity());
+  if (with_sources) {
+    for (int k = 0; k < 4; ++k) fields.push_back(&local.source(k));
+  }
+  // One message per rank: the fields' slab parts one after another.
+  std::vector<double> piece;
+  for (const Field2D* f : fields) {
+    const std::vector<double> part = pack_slab(*f, grid_, layout_);
+    piece.insert(piece.end(), part.begin(), part.end());
+  }
+  std::vector<std::vector<double>> pieces;
+  comm_->gather(piece, pieces);
+  if (!comm_->is_root()) return;
+  GasSolver& whole = *whole_gas_;
+  std::vector<std::vector<double>*> targets;
+  for (int k = 0; k < 4; ++k) targets.push_back(&whole.conserved(k).raw());
+  for (int k = 0; k < 5; ++k) targets.push_back(&whole.primitive_field(k).raw());
+  targets.push_back(&whole.porosity().raw());
+  if (with_sources) {
+    for (int k = 0; k < 4; ++k) targets.push_back(&whole.source(k).raw());
+  }
+  for (int r = 0; r < comm_->size(); ++r) {
+    const SlabLayout of_r = layout_.of_rank(r);
+    const std::size_t part = static_cast<std::size_t>(of_r.stored_end(kGhostLayers) - of_r.stored_begin(kGhostLayers)) *
+                             static_cast<std::size_t>(whole_grid_.ny() + 2 * kGhostLayers);
+    const std::vector<double>& all = pieces[static_cast<std::size_t>(r)];
+    for (std::size_t f = 0; f < targets.size(); ++f) {
+      unpack_slab(std::span<const double>(all).subspan(f * part, part), whole_grid_, of_r, *targets[f]);
+    }
+  }
+}
 
 void Simulation::add_observer(std::unique_ptr<Observer> observer) {
   observers_.push_back(std::move(observer));
@@ -46,9 +112,10 @@ void Simulation::set_progress_callback(std::function<void(const Progress&)> call
 StateView Simulation::view(const std::string& output_dir) const {
   StateView v;
   v.scene = &scene_;
-  v.grid = &grid_;
-  v.gas = gas_.get();
-  v.primitives = gas_->primitives();
+  const bool whole = whole_gas_ != nullptr;
+  v.grid = whole ? &whole_grid_ : &grid_;
+  v.gas = whole ? whole_gas_.get() : gas_.get();
+  v.primitives = v.gas->primitives();
   v.parcels = parcels_.get();
   v.coupling = coupling_.get();
   v.alpha_p = coupling_ ? &coupling_->alpha_p() : nullptr;
@@ -110,10 +177,16 @@ std::vector<std::string> Simulation::enabled_effects() const {
 
 std::string Simulation::work_summary() const {
   std::ostringstream s;
-  const double full = 3.0 * static_cast<double>(grid_.interior_cells()) * static_cast<double>(step_ - first_step_);
-  s << "work: gas " << gas_->cell_updates() - first_cell_updates_ << " cell-stage updates ("
-    << (full > 0.0 ? 100.0 * static_cast<double>(gas_->cell_updates() - first_cell_updates_) / full : 0.0)
-    << " % of the full grid)";
+  const double full = 3.0 * static_cast<double>(whole_grid_.interior_cells()) * static_cast<double>(step_ - first_step_);
+  const long long updates =
+      decomposed_ ? comm_->sum(gas_->cell_updates() - first_cell_updates_) : gas_->cell_updates() - first_cell_updates_;
+  s << "work: gas " << updates << " cell-stage updates ("
+    << (full > 0.0 ? 100.0 * static_cast<double>(updates) / full : 0.0) << " % of the full grid)";
+  if (decomposed_) {
+    s << " on " << comm_->size() << " ranks, x-slabs of";
+    for (int r = 0; r < layout_.ranks(); ++r) s << (r ? ", " : " ") << layout_.of_rank(r).columns();
+    s << " columns";
+  }
   if (parcels_) {
     const long long substeps = parcels_->steps() - first_dem_steps_;
     const long long stepped = parcels_->parcel_substeps() - first_parcel_substeps_;
@@ -136,7 +209,7 @@ std::string Simulation::work_summary() const {
 }
 
 double Simulation::advance(double dt_max) {
-  double dt = std::min(gas_->stable_dt(), dt_max);
+  double dt = std::min(decomposed_ ? comm_->min(gas_->stable_dt()) : gas_->stable_dt(), dt_max);
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     std::ostringstream s;
     s << "step " << step_ << ", t = " << time_ << " s: time step " << dt << " s is not positive";
@@ -188,6 +261,9 @@ RunEnd Simulation::run(const std::string& output_dir) {
   first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
   first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
   first_parcel_substeps_ = parcels_ ? parcels_->parcel_substeps() : 0;
+  // Observers live on rank 0; every rank takes part in gathering what they see.
+  const bool gather = decomposed_ && comm_->any(!observers_.empty());
+  if (gather) gather_gas(false);
   {
     const StateView v = view(output_dir);
     for (auto& o : observers_) {
@@ -210,9 +286,16 @@ RunEnd Simulation::run(const std::string& output_dir) {
     const double remaining = target - time_;
     dt = advance(remaining);
     if (dt == remaining) time_ = target;  // exactly on the target, not a rounding short of it
-    const StateView v = view(output_dir);
     {
       const ScopedTimer t(timings_.observers);
+      const bool output_due = interval > 0.0 && time_ >= multiple_time(next_output_, interval);
+      if (gather) {
+        bool read = output_due;
+        const StateView now = view(output_dir);
+        for (auto& o : observers_) read = read || o->reads_step(now);
+        if (comm_->any(read)) gather_gas(false);
+      }
+      const StateView v = view(output_dir);
       for (auto& o : observers_) o->on_step(v);
       if (interval > 0.0 && time_ >= multiple_time(next_output_, interval)) {
         for (auto& o : observers_) o->on_output(v);
@@ -220,11 +303,12 @@ RunEnd Simulation::run(const std::string& output_dir) {
       }
     }
     const bool at_end = !(time_ < end);
-    const bool stop = stop_requested_ && stop_requested_();
+    const bool stop = any_rank(stop_requested_ && stop_requested_());
     const auto now = clock::now();
     if (checkpoint_ && !at_end && !stop) {
       const bool by_time = checkpoint_interval > 0.0 && time_ >= multiple_time(next_checkpoint, checkpoint_interval);
-      const bool by_wall = checkpoint_wall > 0.0 && std::chrono::duration<double>(now - last_checkpoint).count() >= checkpoint_wall;
+      const bool by_wall =
+          any_rank(checkpoint_wall > 0.0 && std::chrono::duration<double>(now - last_checkpoint).count() >= checkpoint_wall);
       if (by_time || by_wall) write_checkpoint();
       if (checkpoint_interval > 0.0) next_checkpoint = first_multiple_after(time_, checkpoint_interval);
     }
@@ -246,6 +330,7 @@ RunEnd Simulation::run(const std::string& output_dir) {
   }
   if (how != RunEnd::Interrupted) {
     const ScopedTimer t(timings_.observers);
+    if (gather) gather_gas(false);
     for (auto& o : observers_) o->on_finish(view(output_dir));
   }
   if (checkpoint_ && last_checkpoint_step != step_) write_checkpoint();

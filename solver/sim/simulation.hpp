@@ -9,6 +9,8 @@
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
+#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/slab_decomposition.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
 #include "solver/sim/snapshot.hpp"
@@ -29,9 +31,15 @@ enum class RunEnd {
   Interrupted,  ///< the stop request said so (SIGINT/SIGTERM): checkpointed, no final frame
 };
 
+class SlabHalo;
+
 class Simulation {
  public:
-  explicit Simulation(const Scene& scene);
+  /// With a communicator of several ranks the grid is cut into x-slabs, one per rank
+  /// (issue 12; docs/parallel.md): every rank must then make the same calls (advance, run,
+  /// snapshot, restore, work_summary are collective), observers belong on rank 0 only, and
+  /// they see the whole grid gathered there. Gas-only scenes so far.
+  explicit Simulation(const Scene& scene, const Communicator* comm = nullptr);
   ~Simulation();
 
   void add_observer(std::unique_ptr<Observer> observer);
@@ -80,13 +88,23 @@ class Simulation {
   /// Advances one step of at most `dt_max` (used by run() and by tests).
   double advance(double dt_max);
 
+  /// What observers see: on rank 0 of a decomposed run the whole grid as last gathered.
   StateView view(const std::string& output_dir = {}) const;
   double time() const { return time_; }
   long long step() const { return step_; }
   const Scene& scene() const { return scene_; }
   GasSolver& gas() { return *gas_; }
   const GasSolver& gas() const { return *gas_; }
+  /// This rank's grid: the whole grid, or its x-slab in a decomposed run.
   const Grid2D& grid() const { return grid_; }
+  const Grid2D& whole_grid() const { return whole_grid_; }
+  bool decomposed() const { return decomposed_; }
+  /// This rank's slab (one slab of the whole grid when not decomposed).
+  const SlabLayout& slab() const { return layout_; }
+  /// Collective in a decomposed run: rank 0's copy of the whole grid's gas (null elsewhere,
+  /// and when not decomposed) takes every rank's slab; all fields, or those observers read.
+  void gather_gas(bool with_sources) const;
+  const GasSolver* whole_gas() const { return whole_gas_.get(); }
   /// Null in a gas-only scene.
   ParcelSystem* parcels() { return parcels_.get(); }
   const ParcelSystem* parcels() const { return parcels_.get(); }
@@ -106,7 +124,13 @@ class Simulation {
 
  private:
   Scene scene_;
+  Grid2D whole_grid_;
   Grid2D grid_;
+  const Communicator* comm_ = nullptr;
+  bool decomposed_ = false;
+  SlabLayout layout_;
+  std::unique_ptr<SlabHalo> halo_;
+  mutable std::unique_ptr<GasSolver> whole_gas_;  ///< rank 0 of a decomposed run: the gathered gas
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
@@ -118,6 +142,7 @@ class Simulation {
   Provenance provenance_;
   bool restored_ = false;            ///< run() resumes the observers instead of starting them
   std::string resumed_from_;         ///< folder the restored run wrote to
+  bool any_rank(bool value) const { return decomposed_ ? comm_->any(value) : value; }
   double time_ = 0.0;
   long long step_ = 0;
   long long next_output_ = 1;

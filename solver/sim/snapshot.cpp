@@ -51,8 +51,12 @@ Snapshot Simulation::snapshot() const {
   s.i64["run/step"] = {step_};
   s.i64["run/next_output"] = {next_output_};
   // Gas: every field step() reads, ghosts included (1-D, row-major (ny + 2g) x (nx + 2g)).
-  s.i64["gas/shape"] = {grid_.ny() + 2 * grid_.ghosts(), grid_.nx() + 2 * grid_.ghosts()};
-  GasSolver& gas = const_cast<GasSolver&>(*gas_);  // read only; the accessors are non-const
+  s.i64["gas/shape"] = {whole_grid_.ny() + 2 * whole_grid_.ghosts(), whole_grid_.nx() + 2 * whole_grid_.ghosts()};
+  // A decomposed run gathers the whole grid on rank 0 and writes the same checkpoint as one
+  // rank would: it restarts on any number of ranks. The other ranks' snapshots stop here.
+  gather_gas(true);
+  if (decomposed_ && !comm_->is_root()) return s;
+  GasSolver& gas = const_cast<GasSolver&>(decomposed_ ? *whole_gas_ : *gas_);  // read only; the accessors are non-const
   for (int k = 0; k < 4; ++k) {
     s.f64["gas/conserved_" + std::to_string(k)] = gas.conserved(k).raw();
     s.f64["gas/source_" + std::to_string(k)] = gas.source(k).raw();
@@ -94,7 +98,7 @@ Snapshot Simulation::snapshot() const {
 
 void Simulation::restore(const Snapshot& s, const std::string& previous_output_dir) {
   const auto shape = snapshot_array(s.i64, "gas/shape", 2);
-  if (shape[0] != grid_.ny() + 2 * grid_.ghosts() || shape[1] != grid_.nx() + 2 * grid_.ghosts()) {
+  if (shape[0] != whole_grid_.ny() + 2 * whole_grid_.ghosts() || shape[1] != whole_grid_.nx() + 2 * whole_grid_.ghosts()) {
     throw SnapshotError("gas/shape " + std::to_string(shape[0]) + " x " + std::to_string(shape[1]) +
                         " does not match the scene's grid");
   }
@@ -107,7 +111,7 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
   const long long step = snapshot_array(s.i64, "run/step", 1)[0];
   long long next_output = snapshot_array(s.i64, "run/next_output", 1)[0];
   if (!std::isfinite(t) || t < 0.0 || step < 0 || next_output < 1) throw SnapshotError("run time or counters out of range");
-  const std::size_t cells = gas_->conserved(0).size();
+  const std::size_t cells = whole_grid_.size_with_ghosts();
   // The observers first: their state is checked as it is taken, and a failure leaves the
   // simulation untouched (a failed restore ends the program anyway).
   for (const auto& o : observers_) {
@@ -205,12 +209,20 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
     }
     p = std::move(restored);
   }
+  // A slab takes its columns and the ghost columns beyond them (its neighbours' cells).
+  const auto assign = [&](Field2D& f, const std::vector<double>& whole) {
+    if (decomposed_) {
+      extract_slab(whole, whole_grid_, layout_, f.raw());
+    } else {
+      f.raw() = whole;
+    }
+  };
   for (int k = 0; k < 4; ++k) {
-    gas_->conserved(k).raw() = *gas_fields[k];
-    gas_->source(k).raw() = *gas_fields[4 + k];
+    assign(gas_->conserved(k), *gas_fields[k]);
+    assign(gas_->source(k), *gas_fields[4 + k]);
   }
-  gas_->porosity().raw() = *gas_fields[8];
-  for (int k = 0; k < 5; ++k) gas_->primitive_field(k).raw() = *gas_fields[9 + k];
+  assign(gas_->porosity(), *gas_fields[8]);
+  for (int k = 0; k < 5; ++k) assign(gas_->primitive_field(k), *gas_fields[9 + k]);
   time_ = t;
   step_ = step;
   // A restart may change output.interval: the next output is then the first multiple after t.

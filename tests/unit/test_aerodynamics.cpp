@@ -133,7 +133,9 @@ TEST(Torque, FitStaysFiniteAndContinuousAsTheRelativeRotationVanishes) {
     const double m = rotation_torque(rho, mu, d, w, 0.0);
     ASSERT_TRUE(std::isfinite(m)) << w;
     // (Below ~1e-290 the torque itself, ~4e-17 w, is under the smallest double and rounds to 0.)
-    if (w > 1e-250) EXPECT_NEAR(m / w, limit, 1e-6 * limit) << w;
+    if (w > 1e-250) {
+      EXPECT_NEAR(m / w, limit, 1e-6 * limit) << w;
+    }
     EXPECT_EQ(rotation_torque(rho, mu, d, -w, 0.0), -m) << w;
   }
   const double w_switch = 1e-100 * 4.0 * mu / (rho * d * d);

@@ -1,0 +1,75 @@
+#pragma once
+// The few collective and neighbour operations the decomposed run needs (issue 12), behind an
+// interface so that nothing outside solver/parallel/mpi/ includes mpi.h and a build without
+// MPI links the same code (make_world_communicator() then returns a one-rank world).
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace dustlift {
+
+class Communicator {
+ public:
+  virtual ~Communicator() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  bool is_root() const { return rank() == 0; }
+
+  /// Reductions over all ranks (exact: a min, an integer sum, a logical or).
+  virtual double min(double value) const = 0;
+  virtual long long sum(long long value) const = 0;
+  virtual bool any(bool value) const = 0;
+  /// The text of the lowest-numbered rank whose text is not empty ("" when all are).
+  virtual std::string first_nonempty(const std::string& text) const = 0;
+  /// Sends `send` to rank `to` and receives `receive` from rank `from` (either may be -1:
+  /// nothing to send or to receive). `receive` must be sized by the caller.
+  virtual void send_receive(std::span<const double> send, int to, std::span<double> receive, int from) const = 0;
+  /// Root receives every rank's `piece` (root's own included), in rank order, into
+  /// `pieces` (resized); the other ranks' `pieces` are left alone.
+  virtual void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const = 0;
+  virtual void barrier() const = 0;
+  /// Ends every rank's process with this exit code (an error only one rank met).
+  [[noreturn]] virtual void abort(int code) const = 0;
+};
+
+/// MPI for the life of the program (MPI_Init_thread with MPI_THREAD_FUNNELED: OpenMP
+/// threads inside a rank, MPI calls from its main thread only); nothing without MPI.
+class ParallelSession {
+ public:
+  ParallelSession(int& argc, char**& argv);
+  ~ParallelSession();
+  ParallelSession(const ParallelSession&) = delete;
+  ParallelSession& operator=(const ParallelSession&) = delete;
+
+ private:
+  bool started_ = false;  ///< this session called MPI_Init_thread (and so finalizes)
+};
+
+/// The ranks the program was started on (MPI_COMM_WORLD; one rank without MPI or before a
+/// ParallelSession).
+std::unique_ptr<Communicator> make_world_communicator();
+
+/// Whether this build has MPI (the CLI reports it in `dustlift info`).
+bool built_with_mpi();
+
+/// One rank on its own: the serial run's communicator.
+class SingleRank final : public Communicator {
+ public:
+  int rank() const override { return 0; }
+  int size() const override { return 1; }
+  double min(double value) const override { return value; }
+  long long sum(long long value) const override { return value; }
+  bool any(bool value) const override { return value; }
+  std::string first_nonempty(const std::string& text) const override { return text; }
+  void send_receive(std::span<const double>, int, std::span<double>, int) const override {}
+  void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const override {
+    pieces.assign(1, std::vector<double>(piece.begin(), piece.end()));
+  }
+  void barrier() const override {}
+  [[noreturn]] void abort(int code) const override { std::exit(code); }
+};
+
+}  // namespace dustlift
