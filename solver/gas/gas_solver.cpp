@@ -1017,6 +1017,24 @@ Field2D& GasSolver::porosity() {
 
 long long GasSolver::cell_updates() const { return impl_->cell_updates; }
 
+void GasSolver::add_column_work(std::vector<double>& per_column) const {
+  const Impl& m = *impl_;
+  if (per_column.size() != static_cast<std::size_t>(m.nx)) throw std::invalid_argument("add_column_work: one entry per column");
+  // A difference array over each row's range [lo, hi), then its running sum.
+  std::vector<double> step(static_cast<std::size_t>(m.nx) + 1, 0.0);
+  for (int j = 0; j < m.ny; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    if (m.row_lo[k] >= m.row_hi[k]) continue;
+    step[static_cast<std::size_t>(m.row_lo[k])] += 1.0;
+    step[static_cast<std::size_t>(m.row_hi[k])] -= 1.0;
+  }
+  double running = 0.0;
+  for (int i = 0; i < m.nx; ++i) {
+    running += step[static_cast<std::size_t>(i)];
+    per_column[static_cast<std::size_t>(i)] += running;
+  }
+}
+
 void GasSolver::resting_gas(RestingGas& out) const {
   const Impl& m = *impl_;
   const RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));

@@ -69,6 +69,10 @@ class GasSolver {
   };
   void resting_gas(RestingGas& out) const;
 
+  /// Adds to per_column[i] (one entry per interior column) the cells of column i the last
+  /// stage updated: the work a decomposed run balances (everything without skipping).
+  void add_column_work(std::vector<double>& per_column) const;
+
   /// Cell-stage updates done since construction (3 per cell and step without skipping;
   /// fewer where resting cells were skipped). For benchmarks and tests.
   long long cell_updates() const;

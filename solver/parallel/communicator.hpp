@@ -30,6 +30,8 @@ class Communicator {
   /// Root receives every rank's `piece` (root's own included), in rank order, into
   /// `pieces` (resized); the other ranks' `pieces` are left alone.
   virtual void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const = 0;
+  /// Rank 0's `values` to every rank (resized there).
+  virtual void broadcast(std::vector<double>& values) const = 0;
   virtual void barrier() const = 0;
   /// Ends every rank's process with this exit code (an error only one rank met).
   [[noreturn]] virtual void abort(int code) const = 0;
@@ -68,6 +70,7 @@ class SingleRank final : public Communicator {
   void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const override {
     pieces.assign(1, std::vector<double>(piece.begin(), piece.end()));
   }
+  void broadcast(std::vector<double>&) const override {}
   void barrier() const override {}
   [[noreturn]] void abort(int code) const override { std::exit(code); }
 };

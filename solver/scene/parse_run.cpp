@@ -11,7 +11,8 @@
 namespace dustlift::scene_detail {
 
 void parse_run(TableReader t, RunConfig& run) {
-  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest", "rest_tolerance"});
+  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest", "rest_tolerance",
+                 "rebalance_steps"});
   run.name = t.string("name", run.name);
   run.end_time = t.required_number("end_time", Range::positive());
   run.max_steps = t.integer("max_steps", 0, 0, 1'000'000'000'000LL);
@@ -19,6 +20,7 @@ void parse_run(TableReader t, RunConfig& run) {
   run.skip_at_rest = t.boolean("skip_at_rest", run.skip_at_rest);
   run.rest_tolerance = t.number("rest_tolerance", run.rest_tolerance, Range::closed(0.0, 1e-6));
   if (run.rest_tolerance > 0.0 && !run.skip_at_rest) t.fail("rest_tolerance", "needs skip_at_rest = true (it widens what skipping counts as at rest)");
+  run.rebalance_steps = t.integer("rebalance_steps", run.rebalance_steps, 0, 1'000'000'000'000LL);
   t.finish();
 }
 

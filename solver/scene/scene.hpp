@@ -27,6 +27,10 @@ struct RunConfig {
   /// are below that velocity and its temperature within tol: the rounding noise that runs
   /// ahead of a shock is then skipped too. Changes results at the level of that noise.
   double rest_tolerance = 0.0;
+  /// Steps between moves of the slab cuts of a run on several MPI ranks (0: never), which
+  /// follow the work as the shock moves (docs/parallel.md). No effect on one rank, and none
+  /// on the results on any number of ranks.
+  long long rebalance_steps = 200;
 };
 
 /// A group of parcels chosen by where they started (paper Figs. 10 and 12).

@@ -1,5 +1,6 @@
 #include "solver/sim/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -22,7 +23,8 @@ std::string fmt_number(double v) {
 
 Simulation::Simulation(const Scene& scene, const Communicator* comm)
     : scene_(scene), whole_grid_(scene.grid.x, scene.grid.y, kGhostLayers), comm_(comm) {
-  GasConfig gas_config = scene_.gas;
+  GasConfig& gas_config = gas_config_;
+  gas_config = scene_.gas;
   gas_config.skip_resting_cells = scene_.run.skip_at_rest;
   gas_config.rest_tolerance = scene_.run.rest_tolerance;
   decomposed_ = comm_ != nullptr && comm_->size() > 1;
@@ -46,10 +48,7 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
     const std::vector<double> cost(static_cast<std::size_t>(whole_grid_.nx()), static_cast<double>(whole_grid_.ny()));
     layout_.bounds = balanced_slabs(cost, comm_->size(), kGhostLayers);
     layout_.rank = comm_->rank();
-    grid_ = whole_grid_.slice_x(layout_.first_column(), layout_.end_column());
-    gas_ = std::make_unique<GasSolver>(grid_, gas_config);
-    halo_ = std::make_unique<SlabHalo>(*comm_, layout_, grid_);
-    gas_->set_halo(halo_.get());
+    build_slab_gas();
     if (comm_->is_root()) whole_gas_ = std::make_unique<GasSolver>(whole_grid_, gas_config);
   }
   gas_->initialize(scene_.initial);
@@ -62,6 +61,69 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::build_slab_gas() {
+  if (halo_) {
+    retired_halo_doubles_ += halo_->doubles_sent();
+    retired_halo_messages_ += halo_->messages_sent();
+  }
+  if (gas_) retired_cell_updates_ += gas_->cell_updates();
+  grid_ = whole_grid_.slice_x(layout_.first_column(), layout_.end_column());
+  gas_ = std::make_unique<GasSolver>(grid_, gas_config_);
+  halo_ = std::make_unique<SlabHalo>(*comm_, layout_, grid_);
+  gas_->set_halo(halo_.get());
+}
+
+long long Simulation::cell_updates() const { return retired_cell_updates_ + gas_->cell_updates(); }
+
+bool Simulation::rebalance() {
+  if (!decomposed_) return false;
+  const ScopedTimer timer(timings_.balance);
+  // Work per column of the whole grid: the cells the last stage updated, plus a twentieth
+  // of every cell for the scans that find the resting ones (an estimate; docs/parallel.md).
+  std::vector<double> work(static_cast<std::size_t>(grid_.nx()), 0.05 * static_cast<double>(grid_.ny()));
+  gas_->add_column_work(work);
+  std::vector<std::vector<double>> pieces;
+  comm_->gather(work, pieces);
+  std::vector<double> whole_work;
+  if (comm_->is_root()) {
+    for (const auto& p : pieces) whole_work.insert(whole_work.end(), p.begin(), p.end());
+  }
+  comm_->broadcast(whole_work);  // every rank computes the same cuts from the same numbers
+  const std::vector<int> bounds = balanced_slabs(whole_work, comm_->size(), kGhostLayers);
+  auto largest = [&](const std::vector<int>& b) {
+    double most = 0.0;
+    for (std::size_t r = 0; r + 1 < b.size(); ++r) {
+      double sum = 0.0;
+      for (int i = b[r]; i < b[r + 1]; ++i) sum += whole_work[static_cast<std::size_t>(i)];
+      most = std::max(most, sum);
+    }
+    return most;
+  };
+  if (!(largest(bounds) < 0.95 * largest(layout_.bounds))) return false;
+  // The whole state to every rank, then each takes its new slab (as a restart does).
+  gather_gas(true);
+  std::vector<std::vector<double>> fields(14);
+  if (comm_->is_root()) {
+    GasSolver& whole = *whole_gas_;
+    for (int k = 0; k < 4; ++k) fields[static_cast<std::size_t>(k)] = whole.conserved(k).raw();
+    for (int k = 0; k < 4; ++k) fields[static_cast<std::size_t>(4 + k)] = whole.source(k).raw();
+    fields[8] = whole.porosity().raw();
+    for (int k = 0; k < 5; ++k) fields[static_cast<std::size_t>(9 + k)] = whole.primitive_field(k).raw();
+  }
+  for (auto& f : fields) comm_->broadcast(f);
+  layout_.bounds = bounds;
+  build_slab_gas();
+  gas_->initialize(scene_.initial);  // the inflow states, as at the start; then the state
+  for (int k = 0; k < 4; ++k) {
+    extract_slab(fields[static_cast<std::size_t>(k)], whole_grid_, layout_, gas_->conserved(k).raw());
+    extract_slab(fields[static_cast<std::size_t>(4 + k)], whole_grid_, layout_, gas_->source(k).raw());
+  }
+  extract_slab(fields[8], whole_grid_, layout_, gas_->porosity().raw());
+  for (int k = 0; k < 5; ++k) extract_slab(fields[static_cast<std::size_t>(9 + k)], whole_grid_, layout_, gas_->primitive_field(k).raw());
+  ++rebalances_;
+  return true;
+}
 
 void Simulation::gather_gas(bool with_sources) const {
   if (!decomposed_) return;
@@ -178,14 +240,18 @@ std::vector<std::string> Simulation::enabled_effects() const {
 std::string Simulation::work_summary() const {
   std::ostringstream s;
   const double full = 3.0 * static_cast<double>(whole_grid_.interior_cells()) * static_cast<double>(step_ - first_step_);
-  const long long updates =
-      decomposed_ ? comm_->sum(gas_->cell_updates() - first_cell_updates_) : gas_->cell_updates() - first_cell_updates_;
+  const long long updates = decomposed_ ? comm_->sum(cell_updates() - first_cell_updates_) : cell_updates() - first_cell_updates_;
   s << "work: gas " << updates << " cell-stage updates ("
     << (full > 0.0 ? 100.0 * static_cast<double>(updates) / full : 0.0) << " % of the full grid)";
   if (decomposed_) {
     s << " on " << comm_->size() << " ranks, x-slabs of";
     for (int r = 0; r < layout_.ranks(); ++r) s << (r ? ", " : " ") << layout_.of_rank(r).columns();
-    s << " columns";
+    s << " columns at the end (" << rebalances_ << " moves of the cuts)";
+    const long long steps = std::max<long long>(step_ - first_step_, 1);
+    const long long doubles = comm_->sum(retired_halo_doubles_ + halo_->doubles_sent());
+    const long long messages = comm_->sum(retired_halo_messages_ + halo_->messages_sent());
+    s << "; halo exchange per rank and step: " << static_cast<double>(doubles) * 8.0 / comm_->size() / steps
+      << " bytes in " << static_cast<double>(messages) / comm_->size() / steps << " messages";
   }
   if (parcels_) {
     const long long substeps = parcels_->steps() - first_dem_steps_;
@@ -205,6 +271,7 @@ std::string Simulation::work_summary() const {
       << " s";
   }
   s << ", observers " << timings_.observers << " s, checkpoints " << timings_.checkpoints << " s";
+  if (decomposed_) s << ", moving slab cuts " << timings_.balance << " s";
   return s.str();
 }
 
@@ -226,6 +293,7 @@ double Simulation::advance(double dt_max) {
   }
   time_ += dt;
   ++step_;
+  if (decomposed_ && scene_.run.rebalance_steps > 0 && step_ % scene_.run.rebalance_steps == 0) rebalance();
   return dt;
 }
 
@@ -257,7 +325,7 @@ RunEnd Simulation::run(const std::string& output_dir) {
   };
 
   first_step_ = step_;
-  first_cell_updates_ = gas_->cell_updates();
+  first_cell_updates_ = cell_updates();
   first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
   first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
   first_parcel_substeps_ = parcels_ ? parcels_->parcel_substeps() : 0;

@@ -116,7 +116,15 @@ class Simulation {
   /// Wall seconds of run() by phase (the coupling's and the DEM's from their own timers).
   struct Timings {
     double gas = 0.0, observers = 0.0, checkpoints = 0.0;
+    double balance = 0.0;  ///< moving slab cuts (a decomposed run)
   };
+  /// Collective in a decomposed run: moves the slab cuts to even out the work of the last
+  /// step (cells each column updated, plus a share for the scans of resting cells) when
+  /// that lowers the largest slab's work by more than 5 %. The state moves exactly: results
+  /// do not change. Returns whether the cuts moved. advance() calls it every
+  /// run.rebalance_steps steps.
+  bool rebalance();
+  long long rebalances() const { return rebalances_; }
   const Timings& timings() const { return timings_; }
 
   /// The physical effects this scene switches on, one short phrase each (for `dustlift info`).
@@ -130,6 +138,12 @@ class Simulation {
   bool decomposed_ = false;
   SlabLayout layout_;
   std::unique_ptr<SlabHalo> halo_;
+  GasConfig gas_config_;
+  long long rebalances_ = 0;
+  long long retired_cell_updates_ = 0;      ///< by the slab solvers a rebalance replaced
+  long long retired_halo_doubles_ = 0, retired_halo_messages_ = 0;
+  long long cell_updates() const;           ///< this rank's, over all its slab solvers
+  void build_slab_gas();
   mutable std::unique_ptr<GasSolver> whole_gas_;  ///< rank 0 of a decomposed run: the gathered gas
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles

@@ -168,6 +168,24 @@ TEST(SlabGas, PaperGasOnTwoRanksMatchesOneRankBitForBit) {
   }
 }
 
+TEST(SlabGas, CutsFollowTheWorkAndTheResultsDoNot) {
+  // Cuts recomputed every 20 steps: at first the work is all behind the shock on rank 0, so
+  // the cut moves left; as the disturbance spreads it moves back.
+  const Scene scene = scene_of(kPaperGas, {"run.rebalance_steps=20"});
+  omp_set_num_threads(1);
+  Simulation sim(scene, &world());
+  advance_steps(sim, 20);
+  EXPECT_EQ(sim.rebalances(), 1);
+  EXPECT_LT(sim.slab().bounds[1], 60) << "the cut did not follow the work";
+  EXPECT_EQ(sim.grid().nx(), sim.slab().columns());
+  advance_steps(sim, 380);
+  EXPECT_GE(sim.rebalances(), 2);
+  const Snapshot two = sim.snapshot();
+  if (!world().is_root()) return;
+  std::string names;
+  EXPECT_EQ(differing_gas_arrays(one_rank_run(scene, 400, 1), two, names), 0) << names;
+}
+
 TEST(SlabGas, PeriodicChannelOnTwoRanksMatchesOneRank) {
   const Scene scene = scene_of(kPeriodic);
   omp_set_num_threads(1);

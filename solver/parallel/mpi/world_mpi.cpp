@@ -1,6 +1,7 @@
 // The Communicator over MPI_COMM_WORLD (built only when CMake finds MPI).
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -76,6 +77,16 @@ class WorldCommunicator final : public Communicator {
     for (int r = 0; r < size_; ++r) {
       const auto b = all.begin() + offsets[static_cast<std::size_t>(r)];
       pieces[static_cast<std::size_t>(r)].assign(b, b + counts[static_cast<std::size_t>(r)]);
+    }
+  }
+  void broadcast(std::vector<double>& values) const override {
+    long long n = static_cast<long long>(values.size());
+    MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+    values.resize(static_cast<std::size_t>(n));
+    // In pieces below 2^31 elements (MPI's int counts).
+    constexpr long long kPiece = 1LL << 28;
+    for (long long k = 0; k < n; k += kPiece) {
+      MPI_Bcast(values.data() + k, static_cast<int>(std::min(kPiece, n - k)), MPI_DOUBLE, 0, MPI_COMM_WORLD);
     }
   }
   void barrier() const override { MPI_Barrier(MPI_COMM_WORLD); }
