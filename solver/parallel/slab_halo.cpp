@@ -1,5 +1,7 @@
 #include "solver/parallel/slab_halo.hpp"
 
+#include <chrono>
+
 namespace dustlift {
 
 SlabHalo::SlabHalo(const Communicator& comm, SlabLayout layout, const Grid2D& slab_grid)
@@ -7,6 +9,7 @@ SlabHalo::SlabHalo(const Communicator& comm, SlabLayout layout, const Grid2D& sl
       ng_(slab_grid.ghosts()), stride_(slab_grid.stride()) {}
 
 void SlabHalo::exchange_columns(std::span<Field2D* const> fields) {
+  const auto start = std::chrono::steady_clock::now();
   const int left = layout_.left(), right = layout_.right();
   const auto block = static_cast<std::size_t>(ng_) * static_cast<std::size_t>(rows_);
   send_.resize(block * fields.size());
@@ -43,6 +46,7 @@ void SlabHalo::exchange_columns(std::span<Field2D* const> fields) {
   const long long sends = (left >= 0) + (right >= 0);
   messages_sent_ += sends;
   doubles_sent_ += sends * static_cast<long long>(send_.size());
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace dustlift

@@ -22,6 +22,8 @@ class SlabHalo final : public GasHalo {
   /// Doubles and messages this rank has sent (for the scaling model of docs/parallel.md).
   long long doubles_sent() const { return doubles_sent_; }
   long long messages_sent() const { return messages_sent_; }
+  /// Wall seconds spent in exchange_columns (the transfer and any wait for a slower neighbour).
+  double seconds() const { return seconds_; }
 
  private:
   const Communicator& comm_;
@@ -29,6 +31,7 @@ class SlabHalo final : public GasHalo {
   int nx_ = 0, rows_ = 0, ng_ = 0, stride_ = 0;
   std::vector<double> send_, receive_;
   long long doubles_sent_ = 0, messages_sent_ = 0;
+  double seconds_ = 0.0;
 };
 
 }  // namespace dustlift

@@ -66,6 +66,7 @@ void Simulation::build_slab_gas() {
   if (halo_) {
     retired_halo_doubles_ += halo_->doubles_sent();
     retired_halo_messages_ += halo_->messages_sent();
+    retired_halo_seconds_ += halo_->seconds();
   }
   if (gas_) retired_cell_updates_ += gas_->cell_updates();
   grid_ = whole_grid_.slice_x(layout_.first_column(), layout_.end_column());
@@ -271,7 +272,20 @@ std::string Simulation::work_summary() const {
       << " s";
   }
   s << ", observers " << timings_.observers << " s, checkpoints " << timings_.checkpoints << " s";
-  if (decomposed_) s << ", moving slab cuts " << timings_.balance << " s";
+  if (decomposed_) {
+    s << ", moving slab cuts " << timings_.balance << " s";
+    // Per rank: the gas time, and the part of it spent in (or waiting at) the halo exchange.
+    const double mine[2] = {timings_.gas, retired_halo_seconds_ + halo_->seconds()};
+    std::vector<std::vector<double>> all;
+    comm_->gather(mine, all);
+    if (comm_->is_root()) {
+      s << "\ntime per rank: gas";
+      for (const auto& r : all) s << " " << r[0];
+      s << " s, of which in the halo exchange";
+      for (const auto& r : all) s << " " << r[1];
+      s << " s";
+    }
+  }
   return s.str();
 }
 

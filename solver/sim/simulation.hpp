@@ -142,6 +142,7 @@ class Simulation {
   long long rebalances_ = 0;
   long long retired_cell_updates_ = 0;      ///< by the slab solvers a rebalance replaced
   long long retired_halo_doubles_ = 0, retired_halo_messages_ = 0;
+  double retired_halo_seconds_ = 0.0;
   long long cell_updates() const;           ///< this rank's, over all its slab solvers
   void build_slab_gas();
   mutable std::unique_ptr<GasSolver> whole_gas_;  ///< rank 0 of a decomposed run: the gathered gas
