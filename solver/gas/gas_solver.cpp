@@ -236,18 +236,21 @@ struct GasSolver::Impl {
   void fill_x_ghosts_row(int j) {
     const BoundaryConfig& b = config.boundary;
     const MirrorSigns sl = mirror_signs(b.left, true), sr = mirror_signs(b.right, true);
+    // Only at the ends this grid owns (a slab's other ends are its neighbours' columns).
     for (int g = 0; g < ng; ++g) {
-      if (!own_left) {
-      } else if (b.left == BoundaryKind::Inflow) {
-        set_ghost(at(-1 - g, j), inflow_left[static_cast<std::size_t>(j)]);
-      } else {
-        copy_ghost(at(-1 - g, j), at(low_side_source(b.left, g, nx), j), sl);
+      if (own_left) {
+        if (b.left == BoundaryKind::Inflow) {
+          set_ghost(at(-1 - g, j), inflow_left[static_cast<std::size_t>(j)]);
+        } else {
+          copy_ghost(at(-1 - g, j), at(low_side_source(b.left, g, nx), j), sl);
+        }
       }
-      if (!own_right) {
-      } else if (b.right == BoundaryKind::Inflow) {
-        set_ghost(at(nx + g, j), inflow_right[static_cast<std::size_t>(j)]);
-      } else {
-        copy_ghost(at(nx + g, j), at(high_side_source(b.right, g, nx), j), sr);
+      if (own_right) {
+        if (b.right == BoundaryKind::Inflow) {
+          set_ghost(at(nx + g, j), inflow_right[static_cast<std::size_t>(j)]);
+        } else {
+          copy_ghost(at(nx + g, j), at(high_side_source(b.right, g, nx), j), sr);
+        }
       }
     }
   }

@@ -46,7 +46,7 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
     }
     // Cost of a column: its cells (the parcels' weight joins when particles do).
     const std::vector<double> cost(static_cast<std::size_t>(whole_grid_.nx()), static_cast<double>(whole_grid_.ny()));
-    layout_.bounds = balanced_slabs(cost, comm_->size(), kGhostLayers);
+    layout_.bounds = balanced_slabs(cost, comm_->size(), kMinSlabColumns);
     layout_.rank = comm_->rank();
     build_slab_gas();
     if (comm_->is_root()) whole_gas_ = std::make_unique<GasSolver>(whole_grid_, gas_config);
@@ -91,7 +91,7 @@ bool Simulation::rebalance() {
     for (const auto& p : pieces) whole_work.insert(whole_work.end(), p.begin(), p.end());
   }
   comm_->broadcast(whole_work);  // every rank computes the same cuts from the same numbers
-  const std::vector<int> bounds = balanced_slabs(whole_work, comm_->size(), kGhostLayers);
+  const std::vector<int> bounds = balanced_slabs(whole_work, comm_->size(), kMinSlabColumns);
   auto largest = [&](const std::vector<int>& b) {
     double most = 0.0;
     for (std::size_t r = 0; r + 1 < b.size(); ++r) {

@@ -169,5 +169,9 @@ class Simulation {
 
 /// Ghost layers the gas scheme needs (MUSCL: 2).
 inline constexpr int kGhostLayers = 2;
+/// Fewest columns of an MPI rank's slab: its ghost columns must be its neighbours' interior
+/// cells, and its two edges' ghost-width strips (the edge activity of the skipping) must not
+/// overlap.
+inline constexpr int kMinSlabColumns = 2 * kGhostLayers;
 
 }  // namespace dustlift
