@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 #include <string>
 
 #include "solver/core/errors.hpp"
@@ -254,4 +256,40 @@ TEST(GasSolverFailure, NaNIsReported) {
   gas.conserved(1)(3, 1) = std::nan("");
   gas.refresh_primitives();
   EXPECT_THROW(gas.step(dt), NumericalFailure);
+}
+
+TEST(GasSolverWork, ColumnWorkCountsTheCellsTheLastStageUpdated) {
+  // A Riemann problem at rest (35 columns, jump between columns 14 and 15) with slip walls:
+  // after one step only the columns within the stages' reach of the jump were computed.
+  const Grid2D grid = stretched_grid();
+  GasConfig cfg = air_config();
+  cfg.skip_resting_cells = true;
+  GasSolver gas(grid, cfg);
+  InitialCondition ic;
+  ic.kind = InitialCondition::Kind::Riemann;
+  ic.axis = 'x';
+  ic.position = 0.010;  // the face between columns 14 and 15 (5 stretched + 10 uniform cells)
+  ic.left = {1.2, 0.0, 0.0, 2e5};
+  ic.right = {1.2, 0.0, 0.0, 1e5};
+  gas.initialize(ic);
+  gas.step(0.5 * gas.stable_dt());
+  std::vector<double> work(static_cast<std::size_t>(grid.nx()), 0.0);
+  gas.add_column_work(work);
+  // The third stage's ranges: the first stage's (cells whose 5-cell stencil holds both
+  // states: columns 13..16), widened by 2 for each later stage: columns 9..20 hold every
+  // row, the rest none.
+  for (int i = 0; i < grid.nx(); ++i) {
+    const double expected = i >= 9 && i <= 20 ? grid.ny() : 0.0;
+    EXPECT_EQ(work[static_cast<std::size_t>(i)], expected) << i;
+  }
+  // It adds to what the caller has, and without skipping every cell counts.
+  cfg.skip_resting_cells = false;
+  GasSolver all(grid, cfg);
+  all.initialize(ic);
+  all.step(0.5 * all.stable_dt());
+  all.add_column_work(work);
+  EXPECT_EQ(work[0], grid.ny());
+  EXPECT_EQ(work[10], 2.0 * grid.ny());
+  std::vector<double> too_short(3);
+  EXPECT_THROW(all.add_column_work(too_short), std::invalid_argument);
 }
