@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/core.h>
+#include <omp.h>
 
 #include "solver/dem/layer_generator.hpp"
+#include "solver/parallel/communicator.hpp"
 #include "solver/scene/resource_limits.hpp"
 
 namespace dustlift {
@@ -46,6 +48,12 @@ void print_info(const Scene& scene, const Simulation& sim) {
   fmt::print("memory: about {} (estimate)\n",
              format_bytes(estimated_run_bytes(static_cast<double>(g.interior_cells()),
                                               parcels != nullptr ? static_cast<double>(parcels->size()) : 0.0)));
+  // How it can run in parallel (docs/parallel.md): threads always, ranks when built with MPI.
+  fmt::print("parallel: OpenMP up to {} threads (--threads); {}\n", omp_get_max_threads(),
+             !built_with_mpi() ? "MPI: not in this build"
+             : parcels != nullptr
+                 ? "MPI: in this build, for scenes without particles (this one has them: one rank)"
+                 : "MPI: mpirun -np N dustlift run SCENE runs x-slabs of this grid");
   const double dt0 = sim.gas().stable_dt();
   fmt::print("time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f} "
              "(the fastest gas at t = 0 on the smallest cells; {:.0f} at the initial dt)\n",

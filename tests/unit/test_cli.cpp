@@ -36,6 +36,12 @@ TEST(Cli, InfoPrintsEffectsGridAndSteps) {
   EXPECT_NE(r.output.find("grid: "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("estimated steps"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("particles: none"), std::string::npos) << r.output;
+  // How it runs in parallel: a gas-only scene names mpirun when the build has MPI.
+#ifdef DUSTLIFT_TEST_MPIEXEC
+  EXPECT_NE(r.output.find("MPI: mpirun -np N dustlift run SCENE"), std::string::npos) << r.output;
+#else
+  EXPECT_NE(r.output.find("MPI: not in this build"), std::string::npos) << r.output;
+#endif
 }
 
 TEST(Cli, InfoEstimatesTheStepsOfAShockRunningInFromCoarseInflowCells) {
