@@ -147,7 +147,10 @@ def band_numbers(band):
     # the next one's (the impact right after the downward push). In our layer a later, larger
     # one follows when the surface parcels land on the rebounding layer (docs/results.md).
     wt, wv = contact_windows
-    first = next((k for k in range(len(wv)) if wv[k] > 0 and (k + 1 == len(wv) or wv[k] >= wv[k + 1])), None)
+    # "Positive" means at least 1 % of the largest window: a mean of rounding noise (1e-20 uN
+    # where the parcels touch nothing) is not an impact.
+    floor = 0.01 * max([v for v in wv if np.isfinite(v)] + [0.0])
+    first = next((k for k in range(len(wv)) if wv[k] > floor and (k + 1 == len(wv) or wv[k] >= wv[k + 1])), None)
     out["contact_first_up_10us_uN"] = wv[first] * 1e6 if first is not None else math.nan
     out["contact_first_up_10us_tau_us"] = wt[first] * 1e6 if first is not None else math.nan
     out["drag_y_late_uN"] = mean_between(tau, n, band["drag_y_N"], 1.0e-4, 3.0e-4) * 1e6
