@@ -25,7 +25,8 @@ double median_us(const Communicator& comm, int reps, F&& f) {
     comm.barrier();
     const auto a = std::chrono::steady_clock::now();
     f();
-    t.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a).count());
+    t.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a).count());
   }
   std::nth_element(t.begin(), t.begin() + reps / 2, t.end());
   return comm.min(-t[static_cast<std::size_t>(reps / 2)]) * -1.0;  // the slowest rank's median
@@ -51,15 +52,17 @@ int main(int argc, char** argv) {
   for (int k = 0; k < 50; ++k) halo.exchange_columns(pointers);  // warm-up
   const long long d0 = halo.doubles_sent(), m0 = halo.messages_sent();
   const double exchange = median_us(*comm, reps, [&] { halo.exchange_columns(pointers); });
-  const double per_exchange_bytes =
-      8.0 * static_cast<double>(halo.doubles_sent() - d0) / static_cast<double>(halo.messages_sent() - m0);
+  const double per_exchange_bytes = 8.0 * static_cast<double>(halo.doubles_sent() - d0) /
+                                    static_cast<double>(halo.messages_sent() - m0);
   double sink = 0.0;
   const double allreduce = median_us(*comm, reps, [&] { sink += comm->min(1.0); });
-  const double agreement = median_us(*comm, reps, [&] { sink += static_cast<double>(comm->first_nonempty("").size()); });
+  const double agreement =
+      median_us(*comm, reps, [&] { sink += static_cast<double>(comm->first_nonempty("").size()); });
   if (comm->is_root()) {
-    std::printf("ranks %d, slab %d x %d cells of the paper grid\n", comm->size(), slab.nx(), slab.ny());
-    std::printf("halo exchange (6 fields, both ways): %.1f us median; %.0f bytes per message\n", exchange,
-                per_exchange_bytes);
+    std::printf("ranks %d, slab %d x %d cells of the paper grid\n", comm->size(), slab.nx(),
+                slab.ny());
+    std::printf("halo exchange (6 fields, both ways): %.1f us median; %.0f bytes per message\n",
+                exchange, per_exchange_bytes);
     std::printf("allreduce (time step min): %.2f us median\n", allreduce);
     std::printf("fault agreement (first_nonempty, no fault): %.2f us median\n", agreement);
     std::printf("(checksum %g)\n", sink);

@@ -13,9 +13,9 @@
 
 #include "solver/core/errors.hpp"
 #include "solver/gas/flux_rows.hpp"
+#include "solver/gas/gas_halo.hpp"
 #include "solver/gas/muscl.hpp"
 #include "solver/gas/shock_relations.hpp"
-#include "solver/gas/gas_halo.hpp"
 #include "solver/gas/rest_ranges.hpp"
 #include "solver/gas/slau2.hpp"
 #include "solver/gas/stage_update.hpp"

@@ -26,10 +26,12 @@ class Communicator {
   virtual std::string first_nonempty(const std::string& text) const = 0;
   /// Sends `send` to rank `to` and receives `receive` from rank `from` (either may be -1:
   /// nothing to send or to receive). `receive` must be sized by the caller.
-  virtual void send_receive(std::span<const double> send, int to, std::span<double> receive, int from) const = 0;
+  virtual void send_receive(std::span<const double> send, int to, std::span<double> receive,
+                            int from) const = 0;
   /// Root receives every rank's `piece` (root's own included), in rank order, into
   /// `pieces` (resized); the other ranks' `pieces` are left alone.
-  virtual void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const = 0;
+  virtual void gather(std::span<const double> piece,
+                      std::vector<std::vector<double>>& pieces) const = 0;
   /// Rank 0's `values` to every rank (resized there).
   virtual void broadcast(std::vector<double>& values) const = 0;
   virtual void barrier() const = 0;
@@ -67,7 +69,8 @@ class SingleRank final : public Communicator {
   bool any(bool value) const override { return value; }
   std::string first_nonempty(const std::string& text) const override { return text; }
   void send_receive(std::span<const double>, int, std::span<double>, int) const override {}
-  void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const override {
+  void gather(std::span<const double> piece,
+              std::vector<std::vector<double>>& pieces) const override {
     pieces.assign(1, std::vector<double>(piece.begin(), piece.end()));
   }
   void broadcast(std::vector<double>&) const override {}

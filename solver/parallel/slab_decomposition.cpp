@@ -10,9 +10,9 @@ std::vector<int> balanced_slabs(std::span<const double> column_cost, int parts, 
   if (parts < 1) throw std::invalid_argument("slab decomposition: needs at least one part");
   if (min_columns < 1) min_columns = 1;
   if (n < parts * min_columns) {
-    throw std::invalid_argument("slab decomposition: " + std::to_string(n) + " columns cannot give " +
-                                std::to_string(parts) + " ranks " + std::to_string(min_columns) +
-                                " columns each; use fewer ranks");
+    throw std::invalid_argument("slab decomposition: " + std::to_string(n) +
+                                " columns cannot give " + std::to_string(parts) + " ranks " +
+                                std::to_string(min_columns) + " columns each; use fewer ranks");
   }
   double total = 0.0;
   for (double c : column_cost) total += c;
@@ -25,7 +25,8 @@ std::vector<int> balanced_slabs(std::span<const double> column_cost, int parts, 
     // At least min_columns after the previous cut, and room for the slabs still to come.
     const int lowest = bounds[static_cast<std::size_t>(r) - 1] + min_columns;
     const int highest = n - (parts - r) * min_columns;
-    while (i < highest && (i < lowest || running + column_cost[static_cast<std::size_t>(i)] * 0.5 < target)) {
+    while (i < highest &&
+           (i < lowest || running + column_cost[static_cast<std::size_t>(i)] * 0.5 < target)) {
       running += column_cost[static_cast<std::size_t>(i)];
       ++i;
     }
@@ -46,11 +47,13 @@ int SlabLayout::right() const {
   return periodic_x ? 0 : -1;
 }
 
-std::vector<double> pack_slab(const Field2D& slab, const Grid2D& slab_grid, const SlabLayout& layout) {
+std::vector<double> pack_slab(const Field2D& slab, const Grid2D& slab_grid,
+                              const SlabLayout& layout) {
   const int ng = slab_grid.ghosts();
   const int i0 = layout.stored_begin(ng), i1 = layout.stored_end(ng);
   std::vector<double> piece;
-  piece.reserve(static_cast<std::size_t>(i1 - i0) * static_cast<std::size_t>(slab_grid.ny() + 2 * ng));
+  piece.reserve(static_cast<std::size_t>(i1 - i0) *
+                static_cast<std::size_t>(slab_grid.ny() + 2 * ng));
   for (int j = -ng; j < slab_grid.ny() + ng; ++j) {
     const double* row = slab.data() + slab_grid.index(0, j);
     piece.insert(piece.end(), row + i0, row + i1);
@@ -63,21 +66,25 @@ void unpack_slab(std::span<const double> piece, const Grid2D& whole, const SlabL
   const int ng = whole.ghosts();
   const int i0 = layout.stored_begin(ng), i1 = layout.stored_end(ng);
   const auto width = static_cast<std::size_t>(i1 - i0);
-  if (piece.size() != width * static_cast<std::size_t>(whole.ny() + 2 * ng) || whole_field.size() != whole.size_with_ghosts()) {
+  if (piece.size() != width * static_cast<std::size_t>(whole.ny() + 2 * ng) ||
+      whole_field.size() != whole.size_with_ghosts()) {
     throw std::invalid_argument("unpack_slab: the piece does not fit the slab");
   }
   std::size_t k = 0;
   for (int j = -ng; j < whole.ny() + ng; ++j, k += width) {
-    std::copy(piece.begin() + static_cast<std::ptrdiff_t>(k), piece.begin() + static_cast<std::ptrdiff_t>(k + width),
-              whole_field.begin() + static_cast<std::ptrdiff_t>(whole.index(layout.first_column() + i0, j)));
+    std::copy(piece.begin() + static_cast<std::ptrdiff_t>(k),
+              piece.begin() + static_cast<std::ptrdiff_t>(k + width),
+              whole_field.begin() +
+                  static_cast<std::ptrdiff_t>(whole.index(layout.first_column() + i0, j)));
   }
 }
 
-void extract_slab(std::span<const double> whole_field, const Grid2D& whole, const SlabLayout& layout,
-                  std::vector<double>& slab_field) {
+void extract_slab(std::span<const double> whole_field, const Grid2D& whole,
+                  const SlabLayout& layout, std::vector<double>& slab_field) {
   const int ng = whole.ghosts();
   const int width = layout.columns() + 2 * ng;
-  slab_field.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(whole.ny() + 2 * ng));
+  slab_field.resize(static_cast<std::size_t>(width) *
+                    static_cast<std::size_t>(whole.ny() + 2 * ng));
   // A periodic wrap: the ghost columns of the first and last slab come from the other end.
   const int n = whole.nx();
   std::size_t k = 0;
@@ -85,7 +92,8 @@ void extract_slab(std::span<const double> whole_field, const Grid2D& whole, cons
     for (int i = -ng; i < layout.columns() + ng; ++i, ++k) {
       int g = layout.first_column() + i;
       const bool outside = g < 0 || g >= n;
-      const bool at_own_end = (g < 0 && layout.owns_left_boundary()) || (g >= n && layout.owns_right_boundary());
+      const bool at_own_end =
+          (g < 0 && layout.owns_left_boundary()) || (g >= n && layout.owns_right_boundary());
       if (outside && !at_own_end) g = (g + n) % n;  // a neighbour across the periodic join
       slab_field[k] = whole_field[whole.index(g, j)];
     }

@@ -43,12 +43,13 @@ struct SlabLayout {
 
 /// The slab's part of a whole-grid field (all rows, ghost rows included; `stored_begin` to
 /// `stored_end` of the slab's columns) as one array, row by row.
-std::vector<double> pack_slab(const Field2D& slab, const Grid2D& slab_grid, const SlabLayout& layout);
+std::vector<double> pack_slab(const Field2D& slab, const Grid2D& slab_grid,
+                              const SlabLayout& layout);
 /// Puts what pack_slab gave on the rank of `layout` into the whole grid's field.
 void unpack_slab(std::span<const double> piece, const Grid2D& whole, const SlabLayout& layout,
                  std::vector<double>& whole_field);
 /// The slab's field, ghost columns included, copied from the whole grid's (a restart).
-void extract_slab(std::span<const double> whole_field, const Grid2D& whole, const SlabLayout& layout,
-                  std::vector<double>& slab_field);
+void extract_slab(std::span<const double> whole_field, const Grid2D& whole,
+                  const SlabLayout& layout, std::vector<double>& slab_field);
 
 }  // namespace dustlift

@@ -5,8 +5,12 @@
 namespace dustlift {
 
 SlabHalo::SlabHalo(const Communicator& comm, SlabLayout layout, const Grid2D& slab_grid)
-    : comm_(comm), layout_(std::move(layout)), nx_(slab_grid.nx()), rows_(slab_grid.ny() + 2 * slab_grid.ghosts()),
-      ng_(slab_grid.ghosts()), stride_(slab_grid.stride()) {}
+    : comm_(comm),
+      layout_(std::move(layout)),
+      nx_(slab_grid.nx()),
+      rows_(slab_grid.ny() + 2 * slab_grid.ghosts()),
+      ng_(slab_grid.ghosts()),
+      stride_(slab_grid.stride()) {}
 
 void SlabHalo::exchange_columns(std::span<Field2D* const> fields) {
   const auto start = std::chrono::steady_clock::now();
@@ -19,7 +23,9 @@ void SlabHalo::exchange_columns(std::span<Field2D* const> fields) {
     std::size_t k = 0;
     for (Field2D* f : fields) {
       for (int r = 0; r < rows_; ++r) {
-        const double* row = f->data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(stride_) + static_cast<std::size_t>(c0 + ng_);
+        const double* row = f->data() +
+                            static_cast<std::size_t>(r) * static_cast<std::size_t>(stride_) +
+                            static_cast<std::size_t>(c0 + ng_);
         for (int g = 0; g < ng_; ++g) send_[k++] = row[g];
       }
     }
@@ -28,7 +34,8 @@ void SlabHalo::exchange_columns(std::span<Field2D* const> fields) {
     std::size_t k = 0;
     for (Field2D* f : fields) {
       for (int r = 0; r < rows_; ++r) {
-        double* row = f->data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(stride_) + static_cast<std::size_t>(c0 + ng_);
+        double* row = f->data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(stride_) +
+                      static_cast<std::size_t>(c0 + ng_);
         for (int g = 0; g < ng_; ++g) row[g] = receive_[k++];
       }
     }

@@ -17,7 +17,9 @@ class SlabHalo final : public GasHalo {
   bool owns_right_boundary() const override { return layout_.owns_right_boundary(); }
   int first_column() const override { return layout_.first_column(); }
   void exchange_columns(std::span<Field2D* const> fields) override;
-  std::string first_failure(const std::string& local) override { return comm_.first_nonempty(local); }
+  std::string first_failure(const std::string& local) override {
+    return comm_.first_nonempty(local);
+  }
 
   /// Doubles and messages this rank has sent (for the scaling model of docs/parallel.md).
   long long doubles_sent() const { return doubles_sent_; }

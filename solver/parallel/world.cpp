@@ -5,7 +5,11 @@
 namespace dustlift {
 ParallelSession::ParallelSession(int&, char**&) {}
 ParallelSession::~ParallelSession() = default;
-std::unique_ptr<Communicator> make_world_communicator() { return std::make_unique<SingleRank>(); }
-bool built_with_mpi() { return false; }
+std::unique_ptr<Communicator> make_world_communicator() {
+  return std::make_unique<SingleRank>();
+}
+bool built_with_mpi() {
+  return false;
+}
 }  // namespace dustlift
 #endif

@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "solver/core/errors.hpp"
+#include "solver/dem/layer_generator.hpp"
 #include "solver/parallel/slab_halo.hpp"
 #include "solver/scene/table_reader.hpp"
-#include "solver/dem/layer_generator.hpp"
 #include "solver/sim/time_targets.hpp"
 
 namespace dustlift {

@@ -160,11 +160,13 @@ TEST(SlabGas, PaperGasOnTwoRanksMatchesOneRankBitForBit) {
   advance_steps(sim, steps);
   const Snapshot two = sim.snapshot();
   if (!world().is_root()) return;
-  EXPECT_GT(sim.whole_gas()->primitives().p->operator()(140, 5), 1.5e5) << "the shock has not crossed the cut";
+  EXPECT_GT(sim.whole_gas()->primitives().p->operator()(140, 5), 1.5e5)
+      << "the shock has not crossed the cut";
   // 2 ranks x 1 thread against 1 rank x 2 threads and 1 rank x 1 thread.
   for (int threads : {2, 1}) {
     std::string names;
-    EXPECT_EQ(differing_gas_arrays(one_rank_run(scene, steps, threads), two, names), 0) << threads << ": " << names;
+    EXPECT_EQ(differing_gas_arrays(one_rank_run(scene, steps, threads), two, names), 0)
+        << threads << ": " << names;
   }
 }
 
@@ -190,7 +192,8 @@ TEST(SlabGas, PeriodicChannelOnTwoRanksMatchesOneRank) {
   const Scene scene = scene_of(kPeriodic);
   omp_set_num_threads(1);
   Simulation sim(scene, &world());
-  EXPECT_EQ(sim.slab().left(), 1 - world().rank());  // the join makes each rank the other's neighbour both ways
+  EXPECT_EQ(sim.slab().left(),
+            1 - world().rank());  // the join makes each rank the other's neighbour both ways
   advance_steps(sim, 300);
   const Snapshot two = sim.snapshot();
   if (!world().is_root()) return;
@@ -238,9 +241,12 @@ TEST(SlabGas, CheckpointsRestartOnAnotherRankCount) {
   one.restore(at_300);
   advance_steps(one, 300);
   std::string names;
-  EXPECT_EQ(differing_gas_arrays(one.snapshot(), two, names), 0) << "1 rank from a 2-rank checkpoint: " << names;
-  EXPECT_EQ(differing_gas_arrays(two_again, two, names), 0) << "2 ranks from a 2-rank checkpoint: " << names;
-  EXPECT_EQ(differing_gas_arrays(two_from_one, two, names), 0) << "2 ranks from a 1-rank checkpoint: " << names;
+  EXPECT_EQ(differing_gas_arrays(one.snapshot(), two, names), 0)
+      << "1 rank from a 2-rank checkpoint: " << names;
+  EXPECT_EQ(differing_gas_arrays(two_again, two, names), 0)
+      << "2 ranks from a 2-rank checkpoint: " << names;
+  EXPECT_EQ(differing_gas_arrays(two_from_one, two, names), 0)
+      << "2 ranks from a 1-rank checkpoint: " << names;
 }
 
 TEST(SlabGas, ABlowUpOnOneRankStopsEveryRankWithTheSameMessage) {
@@ -259,7 +265,8 @@ TEST(SlabGas, ABlowUpOnOneRankStopsEveryRankWithTheSameMessage) {
   }
   EXPECT_NE(message.find("gas cell (i, j) = (150, 10)"), std::string::npos) << message;
   // Every rank has the same text: rank 0 compares its own with rank 1's.
-  const std::string from_rank_1 = world().first_nonempty(world().rank() == 1 ? message : std::string());
+  const std::string from_rank_1 =
+      world().first_nonempty(world().rank() == 1 ? message : std::string());
   EXPECT_EQ(from_rank_1, message);
 }
 

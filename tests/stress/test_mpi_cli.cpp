@@ -20,12 +20,13 @@ namespace {
 #ifdef DUSTLIFT_TEST_MPIEXEC
 std::string mpirun2() {
   // Root is allowed in CI containers; two ranks even on a busy machine.
-  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + std::string(DUSTLIFT_TEST_MPIEXEC) +
-         " -np 2 --oversubscribe " + DUSTLIFT_BINARY;
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+         std::string(DUSTLIFT_TEST_MPIEXEC) + " -np 2 --oversubscribe " + DUSTLIFT_BINARY;
 }
 #endif
 
-const std::string kShock = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/shock_mach144.toml";
+const std::string kShock =
+    std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/shock_mach144.toml";
 
 std::string read_all(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -52,11 +53,13 @@ TEST(MpiCli, TwoRanksWriteWhatOneRankWrites) {
 #else
   const auto dir = fresh_dir("mpi_cli");
   const std::string common = " --threads 1 --set run.end_time=1e-4 --set output.interval=5e-5";
-  auto r = run_command(std::string(DUSTLIFT_BINARY) + " run " + kShock + " --out " + (dir / "one").string() + common);
+  auto r = run_command(std::string(DUSTLIFT_BINARY) + " run " + kShock + " --out " +
+                       (dir / "one").string() + common);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_command(mpirun2() + " run " + kShock + " --out " + (dir / "two").string() + common);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(read_all(dir / "two" / "run.log").find("on 2 ranks, x-slabs of 600, 600 columns"), std::string::npos);
+  EXPECT_NE(read_all(dir / "two" / "run.log").find("on 2 ranks, x-slabs of 600, 600 columns"),
+            std::string::npos);
   EXPECT_EQ(differing(dustlift::read_checkpoint((dir / "one" / "checkpoint.h5").string()),
                       dustlift::read_checkpoint((dir / "two" / "checkpoint.h5").string())),
             "");
@@ -65,15 +68,17 @@ TEST(MpiCli, TwoRanksWriteWhatOneRankWrites) {
   for (const auto& e : fs::directory_iterator(dir / "one" / "series")) {
     if (e.path().extension() != ".csv") continue;
     ++series;
-    EXPECT_EQ(read_all(e.path()), read_all(dir / "two" / "series" / e.path().filename())) << e.path().filename();
+    EXPECT_EQ(read_all(e.path()), read_all(dir / "two" / "series" / e.path().filename()))
+        << e.path().filename();
   }
   EXPECT_GE(series, 1);
   // A 2-rank run stopped at step 200 continues on one rank to the same end, bit for bit.
   r = run_command(mpirun2() + " run " + kShock + " --out " + (dir / "part").string() + common +
                   " --set run.max_steps=200");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = run_command(std::string(DUSTLIFT_BINARY) + " run --restart " + (dir / "part" / "checkpoint.h5").string() +
-                  " --out " + (dir / "rest").string() + " --threads 2 --set run.max_steps=0");
+  r = run_command(std::string(DUSTLIFT_BINARY) + " run --restart " +
+                  (dir / "part" / "checkpoint.h5").string() + " --out " + (dir / "rest").string() +
+                  " --threads 2 --set run.max_steps=0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(differing(dustlift::read_checkpoint((dir / "one" / "checkpoint.h5").string()),
                       dustlift::read_checkpoint((dir / "rest" / "checkpoint.h5").string())),
@@ -87,16 +92,18 @@ TEST(MpiCli, BadInputOnTwoRanksIsReportedOnceAndWritesNothing) {
   GTEST_SKIP() << "built without MPI";
 #else
   const auto dir = fresh_dir("mpi_cli_bad");
-  auto r = run_command(mpirun2() + " run " + kShock + " --out " + (dir / "out").string() + " --set gas.scheme.cfl=7");
+  auto r = run_command(mpirun2() + " run " + kShock + " --out " + (dir / "out").string() +
+                       " --set gas.scheme.cfl=7");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const std::size_t first = r.output.find("dustlift: error:");
   ASSERT_NE(first, std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("dustlift: error:", first + 1), std::string::npos) << "reported twice:\n" << r.output;
+  EXPECT_EQ(r.output.find("dustlift: error:", first + 1), std::string::npos) << "reported twice:\n"
+                                                                             << r.output;
   EXPECT_NE(r.output.find("gas.scheme.cfl"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
   // Particles are not decomposed yet: a clear refusal, not a wrong run.
-  r = run_command(mpirun2() + " run " + std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml --out " +
-                  (dir / "dust").string());
+  r = run_command(mpirun2() + " run " + std::string(DUSTLIFT_SOURCE_DIR) +
+                  "/cases/quickstart.toml --out " + (dir / "dust").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("[particles] on 2 MPI ranks"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "dust"));

@@ -32,7 +32,8 @@ TEST(SlabDecomposition, CutsFollowTheCost) {
   spike[99] = 1000.0;
   const std::vector<int> b = balanced_slabs(spike, 4, 3);
   ASSERT_EQ(b.size(), 5u);
-  for (int r = 0; r < 4; ++r) EXPECT_GE(b[static_cast<std::size_t>(r) + 1] - b[static_cast<std::size_t>(r)], 3) << r;
+  for (int r = 0; r < 4; ++r)
+    EXPECT_GE(b[static_cast<std::size_t>(r) + 1] - b[static_cast<std::size_t>(r)], 3) << r;
   EXPECT_THROW(balanced_slabs(std::vector<double>(5, 1.0), 3, 2), std::invalid_argument);
 }
 
@@ -65,7 +66,8 @@ TEST(SlabDecomposition, SliceKeepsEveryFaceOfTheWholeAxis) {
   for (const auto& [i0, i1] : {std::pair{0, 950}, std::pair{950, 1900}, std::pair{290, 310}}) {
     const Axis s = whole.slice(i0, i1);
     ASSERT_EQ(s.cells(), i1 - i0);
-    for (int i = -2; i <= s.cells() + 2; ++i) ASSERT_EQ(s.face(i), whole.face(i + i0)) << i0 << " " << i;
+    for (int i = -2; i <= s.cells() + 2; ++i)
+      ASSERT_EQ(s.face(i), whole.face(i + i0)) << i0 << " " << i;
     for (int i = -2; i < s.cells() + 2; ++i) {
       ASSERT_EQ(s.center(i), whole.center(i + i0));
       ASSERT_EQ(s.width(i), whole.width(i + i0));
@@ -99,7 +101,8 @@ TEST(SlabDecomposition, PackUnpackAndExtractRebuildTheWholeField) {
       for (int j = -2; j < 5; ++j) {
         for (int i = -2; i < slab.nx() + 2; ++i) {
           int g = i + mine.first_column();
-          if (periodic && (g < 0 || g >= 12) && !(r == 0 && g < 0 && mine.owns_left_boundary())) g = (g + 12) % 12;
+          if (periodic && (g < 0 || g >= 12) && !(r == 0 && g < 0 && mine.owns_left_boundary()))
+            g = (g + 12) % 12;
           ASSERT_EQ(piece(i, j), field(g, j)) << periodic << " " << r << " " << i << " " << j;
         }
       }

@@ -52,14 +52,18 @@ class WorldCommunicator final : public Communicator {
     MPI_Bcast(out.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
     return out;
   }
-  void send_receive(std::span<const double> send, int to, std::span<double> receive, int from) const override {
-    MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE, to < 0 ? MPI_PROC_NULL : to, kTag,
-                 receive.data(), static_cast<int>(receive.size()), MPI_DOUBLE, from < 0 ? MPI_PROC_NULL : from, kTag,
-                 MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  void send_receive(std::span<const double> send, int to, std::span<double> receive,
+                    int from) const override {
+    MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_DOUBLE,
+                 to < 0 ? MPI_PROC_NULL : to, kTag, receive.data(),
+                 static_cast<int>(receive.size()), MPI_DOUBLE, from < 0 ? MPI_PROC_NULL : from,
+                 kTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   }
-  void gather(std::span<const double> piece, std::vector<std::vector<double>>& pieces) const override {
+  void gather(std::span<const double> piece,
+              std::vector<std::vector<double>>& pieces) const override {
     int count = static_cast<int>(piece.size());
-    std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(static_cast<std::size_t>(size_));
+    std::vector<int> counts(static_cast<std::size_t>(size_)),
+        offsets(static_cast<std::size_t>(size_));
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
     std::vector<double> all;
     if (rank_ == 0) {
@@ -70,8 +74,8 @@ class WorldCommunicator final : public Communicator {
       }
       all.resize(static_cast<std::size_t>(total));
     }
-    MPI_Gatherv(piece.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
-                MPI_COMM_WORLD);
+    MPI_Gatherv(piece.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                MPI_DOUBLE, 0, MPI_COMM_WORLD);
     if (rank_ != 0) return;
     pieces.resize(static_cast<std::size_t>(size_));
     for (int r = 0; r < size_; ++r) {
@@ -86,7 +90,8 @@ class WorldCommunicator final : public Communicator {
     // In pieces below 2^31 elements (MPI's int counts).
     constexpr long long kPiece = 1LL << 28;
     for (long long k = 0; k < n; k += kPiece) {
-      MPI_Bcast(values.data() + k, static_cast<int>(std::min(kPiece, n - k)), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+      MPI_Bcast(values.data() + k, static_cast<int>(std::min(kPiece, n - k)), MPI_DOUBLE, 0,
+                MPI_COMM_WORLD);
     }
   }
   void barrier() const override { MPI_Barrier(MPI_COMM_WORLD); }
@@ -117,7 +122,8 @@ ParallelSession::ParallelSession(int& argc, char**& argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   started_ = true;
-  if (provided < MPI_THREAD_FUNNELED) throw std::runtime_error("MPI does not provide MPI_THREAD_FUNNELED");
+  if (provided < MPI_THREAD_FUNNELED)
+    throw std::runtime_error("MPI does not provide MPI_THREAD_FUNNELED");
 }
 
 ParallelSession::~ParallelSession() {
@@ -129,6 +135,8 @@ std::unique_ptr<Communicator> make_world_communicator() {
   return std::make_unique<WorldCommunicator>();
 }
 
-bool built_with_mpi() { return true; }
+bool built_with_mpi() {
+  return true;
+}
 
 }  // namespace dustlift
