@@ -85,16 +85,14 @@ void extract_slab(std::span<const double> whole_field, const Grid2D& whole,
   const int width = layout.columns() + 2 * ng;
   slab_field.resize(static_cast<std::size_t>(width) *
                     static_cast<std::size_t>(whole.ny() + 2 * ng));
-  // A periodic wrap: the ghost columns of the first and last slab come from the other end.
-  const int n = whole.nx();
+  // Columns beyond the domain's ends are the whole grid's own ghost columns, periodic or not:
+  // they hold what one rank holds there (for the primitives the periodic copy, for the
+  // conserved variables, which no stencil reads there, what they were left at), so a gather
+  // gives back the one-rank arrays bit for bit.
   std::size_t k = 0;
   for (int j = -ng; j < whole.ny() + ng; ++j) {
     for (int i = -ng; i < layout.columns() + ng; ++i, ++k) {
-      int g = layout.first_column() + i;
-      const bool outside = g < 0 || g >= n;
-      const bool at_own_end =
-          (g < 0 && layout.owns_left_boundary()) || (g >= n && layout.owns_right_boundary());
-      if (outside && !at_own_end) g = (g + n) % n;  // a neighbour across the periodic join
+      const int g = layout.first_column() + i;
       slab_field[k] = whole_field[whole.index(g, j)];
     }
   }

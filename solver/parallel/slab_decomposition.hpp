@@ -48,7 +48,8 @@ std::vector<double> pack_slab(const Field2D& slab, const Grid2D& slab_grid,
 /// Puts what pack_slab gave on the rank of `layout` into the whole grid's field.
 void unpack_slab(std::span<const double> piece, const Grid2D& whole, const SlabLayout& layout,
                  std::vector<double>& whole_field);
-/// The slab's field, ghost columns included, copied from the whole grid's (a restart).
+/// The slab's field, ghost columns included, copied from the whole grid's (a restart, a move
+/// of the cuts): beyond a domain end its ghost columns are the whole grid's ghost columns.
 void extract_slab(std::span<const double> whole_field, const Grid2D& whole,
                   const SlabLayout& layout, std::vector<double>& slab_field);
 
