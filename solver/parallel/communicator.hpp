@@ -30,6 +30,10 @@ class Communicator {
                             int from) const = 0;
   /// Root receives every rank's `piece` (root's own included), in rank order, into
   /// `pieces` (resized); the other ranks' `pieces` are left alone.
+  /// Every rank sends send[q] to rank q and receives receive[q] from rank q, sized by the
+  /// caller (empty: no message); all at once (a move of the slab cuts).
+  virtual void exchange(const std::vector<std::vector<double>>& send,
+                        std::vector<std::vector<double>>& receive) const = 0;
   virtual void gather(std::span<const double> piece,
                       std::vector<std::vector<double>>& pieces) const = 0;
   /// Rank 0's `values` to every rank (resized there).
@@ -69,6 +73,11 @@ class SingleRank final : public Communicator {
   bool any(bool value) const override { return value; }
   std::string first_nonempty(const std::string& text) const override { return text; }
   void send_receive(std::span<const double>, int, std::span<double>, int) const override {}
+  void exchange(const std::vector<std::vector<double>>& send,
+                std::vector<std::vector<double>>& receive) const override {
+    receive.resize(1);
+    receive[0] = send.empty() ? std::vector<double>() : send[0];
+  }
   void gather(std::span<const double> piece,
               std::vector<std::vector<double>>& pieces) const override {
     pieces.assign(1, std::vector<double>(piece.begin(), piece.end()));

@@ -102,26 +102,72 @@ bool Simulation::rebalance() {
     return most;
   };
   if (!(largest(bounds) < 0.95 * largest(layout_.bounds))) return false;
-  // The whole state to every rank, then each takes its new slab (as a restart does).
-  gather_gas(true);
-  std::vector<std::vector<double>> fields(14);
-  if (comm_->is_root()) {
-    GasSolver& whole = *whole_gas_;
-    for (int k = 0; k < 4; ++k) fields[static_cast<std::size_t>(k)] = whole.conserved(k).raw();
-    for (int k = 0; k < 4; ++k) fields[static_cast<std::size_t>(4 + k)] = whole.source(k).raw();
-    fields[8] = whole.porosity().raw();
-    for (int k = 0; k < 5; ++k) fields[static_cast<std::size_t>(9 + k)] = whole.primitive_field(k).raw();
+  // The state moves exactly: every rank sends each rank the columns of its new slab that it
+  // holds now (its interior, and the ghost columns beyond a domain end), every field and row.
+  // Only ranks whose old and new slabs overlap exchange anything. The new slab's other ghost
+  // columns are its neighbours' cells: the next step's exchanges fill those that are read.
+  const int ng = kGhostLayers;
+  const auto rows = static_cast<std::size_t>(whole_grid_.ny() + 2 * ng);
+  SlabLayout moved = layout_;
+  moved.bounds = bounds;
+  // Whole-grid columns [first, end) a layout's rank stores.
+  auto stored = [&](const SlabLayout& l) {
+    return std::pair{l.first_column() + l.stored_begin(ng), l.first_column() + l.stored_end(ng)};
+  };
+  auto overlap = [](std::pair<int, int> a, std::pair<int, int> b) {
+    return std::pair{std::max(a.first, b.first), std::min(a.second, b.second)};
+  };
+  auto fields_of = [](GasSolver& g) {
+    std::vector<Field2D*> f;
+    for (int k = 0; k < 4; ++k) f.push_back(&g.conserved(k));
+    for (int k = 0; k < 4; ++k) f.push_back(&g.source(k));
+    f.push_back(&g.porosity());
+    for (int k = 0; k < 5; ++k) f.push_back(&g.primitive_field(k));
+    return f;
+  };
+  const int ranks = comm_->size();
+  std::vector<std::vector<double>> send(static_cast<std::size_t>(ranks)), receive(static_cast<std::size_t>(ranks));
+  {
+    const std::vector<Field2D*> old_fields = fields_of(*gas_);
+    const std::pair<int, int> mine = stored(layout_);
+    for (int q = 0; q < ranks; ++q) {
+      const auto [a, b] = overlap(mine, stored(moved.of_rank(q)));
+      if (a >= b) continue;
+      std::vector<double>& out = send[static_cast<std::size_t>(q)];
+      out.reserve(old_fields.size() * rows * static_cast<std::size_t>(b - a));
+      for (const Field2D* f : old_fields) {
+        for (int j = -ng; j < whole_grid_.ny() + ng; ++j) {
+          const double* row = f->data() + grid_.index(a - layout_.first_column(), j);
+          out.insert(out.end(), row, row + (b - a));
+        }
+      }
+    }
+    const std::pair<int, int> wanted = stored(moved);
+    for (int q = 0; q < ranks; ++q) {
+      const auto [a, b] = overlap(stored(layout_.of_rank(q)), wanted);
+      if (a < b) receive[static_cast<std::size_t>(q)].resize(old_fields.size() * rows * static_cast<std::size_t>(b - a));
+    }
   }
-  for (auto& f : fields) comm_->broadcast(f);
-  layout_.bounds = bounds;
+  comm_->exchange(send, receive);
+  const SlabLayout before = layout_;
+  layout_ = moved;
   build_slab_gas();
   gas_->initialize(scene_.initial);  // the inflow states, as at the start; then the state
-  for (int k = 0; k < 4; ++k) {
-    extract_slab(fields[static_cast<std::size_t>(k)], whole_grid_, layout_, gas_->conserved(k).raw());
-    extract_slab(fields[static_cast<std::size_t>(4 + k)], whole_grid_, layout_, gas_->source(k).raw());
+  const std::vector<Field2D*> new_fields = fields_of(*gas_);
+  const std::pair<int, int> wanted = stored(layout_);
+  for (int q = 0; q < ranks; ++q) {
+    const auto [a, b] = overlap(stored(before.of_rank(q)), wanted);
+    if (a >= b) continue;
+    const std::vector<double>& in = receive[static_cast<std::size_t>(q)];
+    std::size_t k = 0;
+    for (Field2D* f : new_fields) {
+      for (int j = -ng; j < whole_grid_.ny() + ng; ++j) {
+        std::copy_n(in.begin() + static_cast<std::ptrdiff_t>(k), b - a,
+                    f->data() + grid_.index(a - layout_.first_column(), j));
+        k += static_cast<std::size_t>(b - a);
+      }
+    }
   }
-  extract_slab(fields[8], whole_grid_, layout_, gas_->porosity().raw());
-  for (int k = 0; k < 5; ++k) extract_slab(fields[static_cast<std::size_t>(9 + k)], whole_grid_, layout_, gas_->primitive_field(k).raw());
   ++rebalances_;
   return true;
 }

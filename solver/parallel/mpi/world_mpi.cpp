@@ -59,6 +59,26 @@ class WorldCommunicator final : public Communicator {
                  static_cast<int>(receive.size()), MPI_DOUBLE, from < 0 ? MPI_PROC_NULL : from,
                  kTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   }
+  void exchange(const std::vector<std::vector<double>>& send,
+                std::vector<std::vector<double>>& receive) const override {
+    std::vector<MPI_Request> requests;
+    receive.resize(static_cast<std::size_t>(size_));
+    for (int q = 0; q < size_; ++q) {
+      std::vector<double>& r = receive[static_cast<std::size_t>(q)];
+      if (r.empty()) continue;
+      requests.emplace_back();
+      MPI_Irecv(r.data(), static_cast<int>(r.size()), MPI_DOUBLE, q, kTag + 1, MPI_COMM_WORLD,
+                &requests.back());
+    }
+    for (int q = 0; q < size_ && q < static_cast<int>(send.size()); ++q) {
+      const std::vector<double>& s = send[static_cast<std::size_t>(q)];
+      if (s.empty()) continue;
+      requests.emplace_back();
+      MPI_Isend(s.data(), static_cast<int>(s.size()), MPI_DOUBLE, q, kTag + 1, MPI_COMM_WORLD,
+                &requests.back());
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  }
   void gather(std::span<const double> piece,
               std::vector<std::vector<double>>& pieces) const override {
     int count = static_cast<int>(piece.size());
