@@ -121,6 +121,10 @@ TEST(SlabDecomposition, ASingleRankWorldWithoutMpi) {
   one.gather(std::vector<double>{1.0, 2.0}, pieces);
   ASSERT_EQ(pieces.size(), 1u);
   EXPECT_EQ(pieces[0], (std::vector<double>{1.0, 2.0}));
+  std::vector<std::vector<double>> received;
+  one.exchange({{3.0, 4.0}}, received);  // to itself
+  ASSERT_EQ(received.size(), 1u);
+  EXPECT_EQ(received[0], (std::vector<double>{3.0, 4.0}));
 }
 
 }  // namespace
