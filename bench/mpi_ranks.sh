@@ -17,7 +17,7 @@ reps=${3:-3}
 scene=$here/cases/paper/vertical_shock_gas.toml
 work=$(mktemp -d -t dustlift-mpi-ranks.XXXXXX)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 mpirun=(mpirun --oversubscribe --bind-to none)
 common=(--set "run.end_time=$end" --set output.interval=1e-4 --set output.vtk=false --overwrite)
 

@@ -20,7 +20,8 @@ namespace {
 #ifdef DUSTLIFT_TEST_MPIEXEC
 std::string mpirun2() {
   // Root is allowed in CI containers; two ranks even on a busy machine.
-  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+         "OMPI_MCA_btl_vader_single_copy_mechanism=none " +
          std::string(DUSTLIFT_TEST_MPIEXEC) + " -np 2 --oversubscribe " + DUSTLIFT_BINARY;
 }
 #endif
