@@ -118,13 +118,8 @@ class CatalystObserver final : public Observer {
     return view.step % config_.interval_steps == 0;
   }
   void on_step(const StateView& view) override {
-    if (at_end(view)) return;  // on_finish delivers it, to every pipeline
-    if (config_.interval > 0.0) {
-      if (view.time < multiple_time(next_, config_.interval)) return;
-      next_ = first_multiple_after(view.time, config_.interval);
-    } else if (view.step % config_.interval_steps != 0) {
-      return;
-    }
+    if (!reads_step(view)) return;  // not due, or the end, which on_finish delivers to every pipeline
+    if (config_.interval > 0.0) next_ = first_multiple_after(view.time, config_.interval);
     deliver(view, false);
   }
   void on_finish(const StateView& view) override {

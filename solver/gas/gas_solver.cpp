@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <sstream>
 #include <variant>
 #include <vector>
@@ -678,13 +679,9 @@ struct GasSolver::Impl {
   }
   void exchange_primitive_columns() {
     if (halo == nullptr) return;
-    if (skip_resting) {
-      Field2D* const fields[] = {&rho, &u, &v, &p, &T, &edge_activity};
-      halo->exchange_columns(fields);
-    } else {
-      Field2D* const fields[] = {&rho, &u, &v, &p, &T};
-      halo->exchange_columns(fields);
-    }
+    // The edge activity rides along only where skipping uses it.
+    Field2D* const fields[] = {&rho, &u, &v, &p, &T, &edge_activity};
+    halo->exchange_columns(std::span<Field2D* const>(fields).first(skip_resting ? 6 : 5));
   }
 
   /// Marks the edge columns of each row that this stage's ranges reach (see edge_activity).

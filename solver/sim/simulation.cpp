@@ -14,6 +14,19 @@
 namespace dustlift {
 
 namespace {
+/// Every field of a gas solver's state that a gather or a move of the slab cuts carries, in
+/// one order: conserved, primitives, porosity, and (with_sources) the sources.
+std::vector<Field2D*> gas_state_fields(GasSolver& g, bool with_sources) {
+  std::vector<Field2D*> f;
+  for (int k = 0; k < 4; ++k) f.push_back(&g.conserved(k));
+  for (int k = 0; k < 5; ++k) f.push_back(&g.primitive_field(k));
+  f.push_back(&g.porosity());
+  if (with_sources) {
+    for (int k = 0; k < 4; ++k) f.push_back(&g.source(k));
+  }
+  return f;
+}
+
 std::string fmt_number(double v) {
   std::ostringstream s;
   s << v;
@@ -117,18 +130,10 @@ bool Simulation::rebalance() {
   auto overlap = [](std::pair<int, int> a, std::pair<int, int> b) {
     return std::pair{std::max(a.first, b.first), std::min(a.second, b.second)};
   };
-  auto fields_of = [](GasSolver& g) {
-    std::vector<Field2D*> f;
-    for (int k = 0; k < 4; ++k) f.push_back(&g.conserved(k));
-    for (int k = 0; k < 4; ++k) f.push_back(&g.source(k));
-    f.push_back(&g.porosity());
-    for (int k = 0; k < 5; ++k) f.push_back(&g.primitive_field(k));
-    return f;
-  };
   const int ranks = comm_->size();
   std::vector<std::vector<double>> send(static_cast<std::size_t>(ranks)), receive(static_cast<std::size_t>(ranks));
   {
-    const std::vector<Field2D*> old_fields = fields_of(*gas_);
+    const std::vector<Field2D*> old_fields = gas_state_fields(*gas_, true);
     const std::pair<int, int> mine = stored(layout_);
     for (int q = 0; q < ranks; ++q) {
       const auto [a, b] = overlap(mine, stored(moved.of_rank(q)));
@@ -153,7 +158,7 @@ bool Simulation::rebalance() {
   layout_ = moved;
   build_slab_gas();
   gas_->initialize(scene_.initial);  // the inflow states, as at the start; then the state
-  const std::vector<Field2D*> new_fields = fields_of(*gas_);
+  const std::vector<Field2D*> new_fields = gas_state_fields(*gas_, true);
   const std::pair<int, int> wanted = stored(layout_);
   for (int q = 0; q < ranks; ++q) {
     const auto [a, b] = overlap(stored(before.of_rank(q)), wanted);
@@ -174,14 +179,7 @@ bool Simulation::rebalance() {
 
 void Simulation::gather_gas(bool with_sources) const {
   if (!decomposed_) return;
-  GasSolver& local = *gas_;
-  std::vector<Field2D*> fields;
-  for (int k = 0; k < 4; ++k) fields.push_back(&local.conserved(k));
-  for (int k = 0; k < 5; ++k) fields.push_back(&local.primitive_field(k));
-  fields.push_back(&local.porosity());
-  if (with_sources) {
-    for (int k = 0; k < 4; ++k) fields.push_back(&local.source(k));
-  }
+  const std::vector<Field2D*> fields = gas_state_fields(*gas_, with_sources);
   // One message per rank: the fields' slab parts one after another.
   std::vector<double> piece;
   for (const Field2D* f : fields) {
@@ -191,21 +189,14 @@ void Simulation::gather_gas(bool with_sources) const {
   std::vector<std::vector<double>> pieces;
   comm_->gather(piece, pieces);
   if (!comm_->is_root()) return;
-  GasSolver& whole = *whole_gas_;
-  std::vector<std::vector<double>*> targets;
-  for (int k = 0; k < 4; ++k) targets.push_back(&whole.conserved(k).raw());
-  for (int k = 0; k < 5; ++k) targets.push_back(&whole.primitive_field(k).raw());
-  targets.push_back(&whole.porosity().raw());
-  if (with_sources) {
-    for (int k = 0; k < 4; ++k) targets.push_back(&whole.source(k).raw());
-  }
+  const std::vector<Field2D*> targets = gas_state_fields(*whole_gas_, with_sources);
   for (int r = 0; r < comm_->size(); ++r) {
     const SlabLayout of_r = layout_.of_rank(r);
     const std::size_t part = static_cast<std::size_t>(of_r.stored_end(kGhostLayers) - of_r.stored_begin(kGhostLayers)) *
                              static_cast<std::size_t>(whole_grid_.ny() + 2 * kGhostLayers);
     const std::vector<double>& all = pieces[static_cast<std::size_t>(r)];
     for (std::size_t f = 0; f < targets.size(); ++f) {
-      unpack_slab(std::span<const double>(all).subspan(f * part, part), whole_grid_, of_r, *targets[f]);
+      unpack_slab(std::span<const double>(all).subspan(f * part, part), whole_grid_, of_r, targets[f]->raw());
     }
   }
 }
