@@ -22,43 +22,10 @@ namespace {
 // 180 x 40 cells, stretched upstream and above, so the slab cut (column 90, x = 17.5 mm)
 // lies in the uniform part, which the shock crosses after ~400 steps; the rounding noise
 // ahead of it (which exact skipping must handle at the cut) reaches the cut much earlier.
-const char* kPaperGas = R"(
-[run]
-name = "slab_gas"
-end_time = 1.0
-[grid.x]
-start = -0.020
-end = 0.040
-cell_size = 250e-6
-uniform_start = 0.0
-cells_below = 20
-[grid.y]
-start = -0.002
-end = 0.010
-cell_size = 250e-6
-uniform_end = 0.006
-cells_above = 8
-[gas]
-thermo = "thermally_perfect"
-[gas.transport]
-model = "gordon_wilke"
-[gas.scheme]
-reconstruction = "muscl3"
-limiter = "minmod"
-cfl = 0.5
-[boundary]
-left = "inflow"
-right = "outflow"
-bottom = "no_slip_wall"
-top = "no_slip_wall"
-[initial]
-kind = "shock"
-mach = 1.44
-position = -0.005
-state = { p = 101.0e3, T = 300.0 }
-[output]
-interval = 0.0
-)";
+// The scene is cases/paper/vertical_shock_gas.toml (the benchmark's) with these overrides.
+const std::vector<std::string> kShortChannel = {"grid.x.start=-0.020",      "grid.x.end=0.040",
+                                                "grid.x.cells_below=20",    "grid.y.end=0.010",
+                                                "grid.y.uniform_end=0.006", "grid.y.cells_above=8"};
 
 // A Riemann problem at rest in a periodic channel, cut at x = 50 mm: the disturbance reaches
 // the cut from rank 1's side while rank 0's edge cells still rest (skipped). A change moves
@@ -106,6 +73,13 @@ Scene scene_of(const char* text, const std::vector<std::string>& overrides = {})
   return parse_scene(text, "slab_test.toml", overrides);
 }
 
+/// The paper's gas on the short channel, with more overrides.
+Scene paper_gas(std::vector<std::string> overrides = {}) {
+  overrides.insert(overrides.begin(), kShortChannel.begin(), kShortChannel.end());
+  return load_scene(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock_gas.toml",
+                    overrides);
+}
+
 void advance_steps(Simulation& sim, int steps) {
   for (int k = 0; k < steps; ++k) sim.advance(std::numeric_limits<double>::infinity());
 }
@@ -139,7 +113,7 @@ Snapshot one_rank_run(const Scene& scene, int steps, int threads) {
 }
 
 TEST(SlabGas, CutsTheChannelIntoEqualSlabsAndKeepsTheWholeGridsGeometry) {
-  Simulation sim(scene_of(kPaperGas), &world());
+  Simulation sim(paper_gas(), &world());
   ASSERT_EQ(world().size(), 2) << "run this suite with mpirun -np 2";
   EXPECT_TRUE(sim.decomposed());
   EXPECT_EQ(sim.slab().bounds, (std::vector<int>{0, 90, 180}));
@@ -153,7 +127,7 @@ TEST(SlabGas, CutsTheChannelIntoEqualSlabsAndKeepsTheWholeGridsGeometry) {
 }
 
 TEST(SlabGas, PaperGasOnTwoRanksMatchesOneRankBitForBit) {
-  const Scene scene = scene_of(kPaperGas);
+  const Scene scene = paper_gas();
   const int steps = 700;  // the shock crosses the cut
   omp_set_num_threads(1);
   Simulation sim(scene, &world());
@@ -173,7 +147,7 @@ TEST(SlabGas, PaperGasOnTwoRanksMatchesOneRankBitForBit) {
 TEST(SlabGas, CutsFollowTheWorkAndTheResultsDoNot) {
   // Cuts recomputed every 20 steps: at first the work is all behind the shock on rank 0, so
   // the cut moves left; as the disturbance spreads it moves back.
-  const Scene scene = scene_of(kPaperGas, {"run.rebalance_steps=20"});
+  const Scene scene = paper_gas({"run.rebalance_steps=20"});
   omp_set_num_threads(1);
   Simulation sim(scene, &world());
   advance_steps(sim, 20);
@@ -214,7 +188,7 @@ TEST(SlabGas, PeriodicChannelOnTwoRanksMatchesOneRank) {
 }
 
 TEST(SlabGas, CheckpointsRestartOnAnotherRankCount) {
-  const Scene scene = scene_of(kPaperGas);
+  const Scene scene = paper_gas();
   omp_set_num_threads(1);
   // Two ranks to step 300, a checkpoint, two ranks on to 600; and one rank from the same
   // checkpoint to 600; and two ranks from a one-rank checkpoint of step 300.
@@ -262,7 +236,7 @@ TEST(SlabGas, CheckpointsRestartOnAnotherRankCount) {
 }
 
 TEST(SlabGas, ABlowUpOnOneRankStopsEveryRankWithTheSameMessage) {
-  Simulation sim(scene_of(kPaperGas), &world());
+  Simulation sim(paper_gas(), &world());
   advance_steps(sim, 5);
   // A cell of rank 1's slab (column 150 of the whole grid) loses its energy.
   // Every rank makes the same calls (the contract of a decomposed run); rank 1 writes.
