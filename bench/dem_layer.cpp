@@ -11,10 +11,11 @@
 #include <omp.h>
 
 #include <cmath>
-#include <ctime>
 #include <cstdlib>
+#include <ctime>
 #include <numbers>
 
+#include "bench/dem_reference_layer.hpp"
 #include "bench/run_benchmarks.hpp"
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/contact_law.hpp"
@@ -26,29 +27,7 @@ using namespace dustlift;
 namespace {
 
 ParcelSystem reference_setup() {
-  constexpr double d = 100e-6, rho = 980.0, k_n = 5e4;
-  const double m = rho * sphere_volume(d);
-  DemConfig c;
-  c.enabled = true;
-  c.particle_diameter = c.parcel_diameter = d;
-  c.density = rho;
-  const double area = 0.4 * 0.002;
-  // Exactly 60,000 parcels: areal fraction 60,000 pi d^2 / 4 / area = 0.589.
-  c.layer = LayerConfig{0.0, 0.4, 0.0, 0.002, 60000.0 * disc_area(d) / area, 1,
-                        LayerArrangement::JitteredLattice, false};
-  c.real_per_parcel = 1.0;  // plain DEM: one particle per parcel (no effect on the dynamics)
-  c.contact = ContactParams{k_n, 2.0 / 7.0 * k_n, damping_for_restitution(m / 2, k_n, 0.9), 0.5};
-  c.wall_contact = c.contact;
-  c.domain = DemDomain{0.0, 0.4, 0.0, 0.002, true, true, false, false, true};
-  c.courant = 0.1;  // dt = 0.1 sqrt(m / k_n), k_n > k_t
-  ParcelSystem s = make_layer_system(c);
-  std::uint64_t seed = 2024;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const double a = 2.0 * std::numbers::pi * uniform_from_seed(seed);
-    s.vx[i] = std::cos(a);
-    s.vy[i] = std::sin(a);
-  }
-  return s;
+  return reference_layer(true);
 }
 
 /// CPU seconds used by this process (all threads).

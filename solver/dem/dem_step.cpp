@@ -6,6 +6,7 @@
 
 #include "solver/dem/contact_law.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
 
@@ -39,6 +40,11 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
   }
   const ScopedTimer t(timings_.integrate);
   integrate(dt, store_parts);
+  if (comm_ != nullptr) {
+    // Ghosts take their owners' new states; a rebuild anywhere is a rebuild everywhere.
+    refresh_ghost_kinematics();
+    needs_rebuild_ = comm_->any(needs_rebuild_);
+  }
   parcel_substeps_ += static_cast<long long>(active_count());
   time_ += dt;
   ++steps_;
@@ -74,11 +80,17 @@ void ParcelSystem::compute_contacts(double dt) {
   double* __restrict fy_out = contact_fy.data();
   double* __restrict tq_out = contact_torque.data();
   const std::uint8_t* __restrict wmask = wall_mask_.data();
+  // A ghost's forces are its owner's (its state is refreshed after every sub-step).
+  const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
 
   // Dynamic chunks: contacts cluster where the layer is disturbed, at one end of the x-ordered
   // parcels. Each parcel gathers its own forces: any schedule gives the same bits.
 #pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
+    if (ghost != nullptr && ghost[i] != 0) {
+      fx_out[i] = fy_out[i] = tq_out[i] = 0.0;
+      continue;
+    }
     const double xi = px[i], yi = py[i], vxi = pvx[i], vyi = pvy[i], ri = pr[i];
     const double rwi = ri * pw[i];
     double fx = 0.0, fy = 0.0, tq = 0.0;

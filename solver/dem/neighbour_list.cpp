@@ -11,23 +11,12 @@
 #include <string>
 
 #include "solver/dem/parcel_system.hpp"
+#include "solver/dem/permute.hpp"
+#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
-namespace {
 
-/// out[k] = in[order[k]] for one array, using `scratch` (same element type) as buffer.
-template <class T>
-void permute(std::vector<T>& v, const std::vector<std::int32_t>& order, std::vector<T>& scratch) {
-  const std::size_t n = order.size();
-  scratch.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-  for (std::size_t k = 0; k < n; ++k) scratch[k] = v[order[k]];
-  v.swap(scratch);
-}
-
-}  // namespace
-
-void ParcelSystem::sort_by_cell(bool permute_data) {
+void ParcelSystem::update_cell_geometry() {
   const std::size_t n = size();
   const DemDomain& d = cfg_.domain;
   // Cells at least as wide as the largest cutoff so that all candidates lie in the 3x3 block.
@@ -35,6 +24,7 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   const double* dia = diameter.data();
 #pragma omp parallel for schedule(static) reduction(max : d_max) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) d_max = std::max(d_max, dia[i]);
+  if (comm_ != nullptr) d_max = -comm_->min(-d_max);  // the same cells on every rank
   const double cutoff = d_max + skin_;
   radius_max_ = 0.5 * d_max;
   cutoff_ = cutoff;
@@ -48,6 +38,11 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   x_major_ = cells_x_ >= cells_y_;
   cell_dx_ = length_x_ / cells_x_;
   cell_dy_ = (d.y_max - d.y_min) / cells_y_;
+}
+
+void ParcelSystem::sort_by_cell(bool permute_data) {
+  const std::size_t n = size();
+  const DemDomain& d = cfg_.domain;
 
   if (d.periodic_x) {
     // Wrap into [x_min, x_max): positions stay unwrapped between rebuilds (images are fixed).
@@ -102,6 +97,10 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   ++data_permutations_;
   for_each_permuted_column([this](std::vector<double>& v) { permute(v, order_, scratch_d_); });
   permute(id, order_, scratch_i_);
+  if (comm_ != nullptr) {
+    permute(order_key, order_, scratch_key_);
+    permute(ghost_, order_, scratch_u8_);
+  }
   scratch_wall_.resize(n * kWallCount);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
@@ -115,11 +114,26 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   for (std::size_t i = 0; i < n; ++i) members_[i] = static_cast<std::int32_t>(i);
 }
 
+ParcelSystem::SkinLimits ParcelSystem::skin_limits() const {
+  SkinLimits l;
+  l.base = 0.5 * skin_;
+  l.time = cfg_.fast_skin_substeps * stable_time_step();
+  // Fast skins stay within a block of cells that the periodic images cannot wrap around.
+  int max_block = 8;
+  if (cfg_.domain.periodic_x) max_block = std::min(max_block, (cells_x_ - 1) / 2);
+  l.cap = std::max(l.base, max_block * std::min(cell_dx_, cell_dy_) - cutoff_);
+  return l;
+}
+
 void ParcelSystem::rebuild_neighbours() {
+  update_cell_geometry();
+  // A decomposed run first moves parcels to their owners and renews the ghosts; the history
+  // travels with the parcels (redistribute leaves it in old_*).
+  const bool distributed = comm_ != nullptr;
+  const bool had_list = distributed ? redistribute() : nbr_offset.size() == size() + 1;
   const std::size_t n = size();
   // Keep the old list's history keyed by partner id (ids survive the re-sort).
-  const bool had_list = nbr_offset.size() == n + 1;
-  if (had_list) {
+  if (had_list && !distributed) {
     old_offset_.swap(nbr_offset);
     old_delta_.swap(nbr_delta);
     const std::size_t slots = nbr_index.size();
@@ -130,7 +144,9 @@ void ParcelSystem::rebuild_neighbours() {
   // The data are re-sorted by cell every kSortEvery rebuilds (and at the first): moving 40
   // columns costs more than the list itself, and memory order decays slowly.
   constexpr long long kSortEvery = 8;
-  sort_by_cell(!had_list || rebuilds_ % kSortEvery == 0);  // old_index_[new] = old
+  const bool permuted = !had_list || rebuilds_ % kSortEvery == 0;
+  sort_by_cell(permuted);  // old_index_[new] = old
+  if (distributed) after_distributed_sort(permuted);
 
   const DemDomain& d = cfg_.domain;
   const bool periodic = d.periodic_x;
@@ -139,12 +155,8 @@ void ParcelSystem::rebuild_neighbours() {
   // does not make every parcel's list be rebuilt every few sub-steps. A pair is listed when
   // its gap is below s_i + s_j, so no contact can be missed before one of them has moved
   // its own skin (integrate() then asks for a rebuild).
-  const double s_base = 0.5 * skin_;
-  const double s_time = cfg_.fast_skin_substeps * stable_time_step();
-  // Fast skins stay within a block of cells that the periodic images cannot wrap around.
-  int max_block = 8;
-  if (periodic) max_block = std::min(max_block, (cells_x_ - 1) / 2);
-  const double s_cap = std::max(s_base, max_block * std::min(cell_dx_, cell_dy_) - cutoff_);
+  const SkinLimits limits = skin_limits();
+  const double s_base = limits.base, s_time = limits.time, s_cap = limits.cap;
   half_skin_.resize(n);
   double s_max = s_base;
 #pragma omp parallel for schedule(static) reduction(max : s_max) if (n >= kParallelMinimum)
@@ -154,6 +166,7 @@ void ParcelSystem::rebuild_neighbours() {
     half_skin_[i] = s;
     s_max = std::max(s_max, s);
   }
+  if (distributed) s_max = -comm_->min(-s_max);
   fast_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (half_skin_[i] > s_base) fast_.push_back(static_cast<std::int32_t>(i));
@@ -336,6 +349,12 @@ void ParcelSystem::rebuild_neighbours() {
     x_build_[i] = x[i];
     y_build_[i] = y[i];
     inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
+  }
+  // A ghost's moves are its owner's to judge: it never asks for a rebuild here.
+  if (distributed) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (ghost_[i] != 0) inv_skin2_[i] = 0.0;
+    }
   }
   needs_rebuild_ = false;
   ++rebuilds_;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/parallel/communicator.hpp"
+
 namespace dustlift {
 
 ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
@@ -210,6 +212,7 @@ double ParcelSystem::stable_time_step() const {
   const ContactParams& a = cfg_.contact;
   const ContactParams& b = cfg_.wall_contact;
   const double k_max = std::max({a.k_n, a.k_t, b.k_n, b.k_t});
+  if (comm_ != nullptr) m_min = comm_->min(m_min);  // the same sub-steps on every rank
   return cfg_.courant * std::sqrt(m_min / k_max);
 }
 
@@ -234,6 +237,7 @@ int ParcelSystem::advance(double dt_total, const SubstepHook& hook) {
 double ParcelSystem::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < size(); ++i) {
+    if (is_ghost(i)) continue;
     e += 0.5 * mass[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * inertia[i] * omega[i] * omega[i];
   }
   return e;
@@ -245,6 +249,7 @@ double ParcelSystem::mechanical_energy() const {
   const ContactParams& wc = cfg_.wall_contact;
   const bool listed = nbr_offset.size() == size() + 1;
   for (std::size_t i = 0; i < size(); ++i) {
+    if (is_ghost(i)) continue;
     // Gravity potential of the parcel's real particles.
     e -= mass[i] * (cfg_.gravity_x * x[i] + cfg_.gravity_y * y[i]);
     if (listed) {
@@ -279,6 +284,7 @@ std::size_t ParcelSystem::contact_pair_count() const {
   std::size_t n = 0;
   if (nbr_offset.size() != size() + 1) return 0;
   for (std::size_t i = 0; i < size(); ++i) {
+    if (is_ghost(i)) continue;  // (a pair across ranks is counted on both: a diagnostic)
     for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
       const std::int32_t j = nbr_index[k];
       const double dx = x[j] + nbr_image[k] * length_x_ - x[i], dy = y[j] - y[i];

@@ -23,6 +23,8 @@
 
 namespace dustlift {
 
+class Communicator;
+
 /// Wall slots of the per-parcel wall history, in this order.
 enum class Wall : int { Bottom = 0, Top = 1, Left = 2, Right = 3, Count = 4 };
 inline constexpr int kWallCount = static_cast<int>(Wall::Count);
@@ -189,6 +191,43 @@ class ParcelSystem {
   /// Parcels the current sub-steps run over: [0, active_count()).
   std::size_t active_count() const { return active_count_ < size() ? active_count_ : size(); }
 
+  // ---- Decomposition over x-slabs of MPI ranks (issue 12, docs/parallel.md) ----
+  /// From the next neighbour rebuild on, this rank owns the parcels whose neighbour-cell
+  /// column lies between the cuts (x of the boundaries between ranks 0|1, 1|2, ...; a cut is
+  /// rounded to the nearest cell face) and holds ghost copies of the others' parcels within
+  /// contact reach of its own. Every rank must hold every parcel when this is called (each
+  /// builds the same layer) and keeps its own at the first rebuild. The results are bitwise
+  /// those of one rank: every loop runs in the one-rank parcel order (`order_key`), the
+  /// rebuild, sort and sub-step decisions are collective, and ghost states are refreshed
+  /// every sub-step. Parcels change owner at rebuilds, with their contact history.
+  /// Not for periodic x. `comm` must outlive this system.
+  void set_decomposition(const Communicator& comm, std::vector<double> cuts);
+  /// New cuts, applied at the next rebuild (the parcels move then).
+  void set_cuts(std::vector<double> cuts);
+  bool decomposed() const { return comm_ != nullptr; }
+  /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
+  bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
+  /// Parcels this rank owns (size() in a one-rank run).
+  std::size_t owned_count() const;
+  /// Appends every owned parcel's full state (all columns, wall history and its contact
+  /// history as partner ids and elongations) to `out`, in parcel order: what moves with a
+  /// parcel to another rank, and what a checkpoint gathers.
+  void pack_owned(std::vector<double>& out) const;
+  /// A one-rank system from packed parcels (pack_owned of every rank, any order): sorted by
+  /// order key, with each parcel's contact history as its neighbour list, so that it
+  /// continues as the decomposed run would (checkpoints, tests). The attached columns must
+  /// be attached (same specs, same order) before.
+  void assign_packed(const std::vector<std::vector<double>>& pieces);
+  /// Exchange counters of the decomposition: parcels sent to another owner (and of them,
+  /// those touching another parcel or a wall with a tangential elongation to carry), ghost
+  /// copies sent at rebuilds, doubles and messages sent, and the seconds spent in them.
+  struct DecompositionCounters {
+    long long migrated = 0, migrated_with_history = 0, ghosts_sent = 0, doubles_sent = 0,
+              messages = 0;
+    double seconds = 0.0;
+  };
+  const DecompositionCounters& decomposition_counters() const { return counters_; }
+
   /// Checkpoint access to the private state (see ParcelInternals).
   ParcelInternals internals() const;
   /// Restores it after the public arrays have been restored; throws std::invalid_argument
@@ -197,6 +236,8 @@ class ParcelSystem {
 
   // ---- Per-parcel state (SoA; the order changes when parcels are re-sorted by cell) ----
   std::vector<std::int32_t> id;             ///< stable parcel id (order of add_parcel)
+  /// Decomposed runs: each parcel's index in the one-rank run's parcel order (empty otherwise).
+  std::vector<std::int64_t> order_key;
   std::vector<double> x, y;                 ///< m (x unwrapped between rebuilds when periodic)
   std::vector<double> vx, vy;               ///< m/s
   std::vector<double> omega;                ///< rad/s, counter-clockwise positive
@@ -230,7 +271,34 @@ class ParcelSystem {
  private:
   void step_with_parts(double dt, bool store_parts);
   void rebuild_neighbours();
+  /// Per-parcel skins: the base skin/2, the time a fast parcel's skin covers at its speed,
+  /// and the cap (after update_cell_geometry).
+  struct SkinLimits {
+    double base = 0.0, time = 0.0, cap = 0.0;
+  };
+  SkinLimits skin_limits() const;
+  /// The neighbour cells (size >= the largest cutoff, over every rank's parcels).
+  void update_cell_geometry();
   void sort_by_cell(bool permute_data);
+  // Decomposition (parcel_decomposition.cpp).
+  /// Before a rebuild: parcels to their owners with their contact history, fresh ghosts,
+  /// the table in order-key order and the carried history in old_offset_/old_partner_id_/
+  /// old_delta_. Returns whether there was a list before (on every rank alike).
+  bool redistribute();
+  /// After the rebuild's sort: the exchange lists follow the parcels, and a permuting sort
+  /// gives the owned parcels their new order keys and sends them to the ghosts.
+  void after_distributed_sort(bool permuted);
+  /// Every sub-step: the owners' positions, velocities and spins to their ghosts.
+  void refresh_ghost_kinematics();
+  /// new table row k = old row source[k], for every per-parcel array a rebuild keeps.
+  void reorder_parcels(const std::vector<std::int32_t>& source);
+  /// Sorts the table by order key; returns the rows' old indices in their new order.
+  std::vector<std::int32_t> sort_table_by_key();
+  void pack_parcel(std::size_t i, bool with_history, std::vector<double>& out) const;
+  /// Appends a packed parcel; returns the next row; its history goes to hist_* scratch.
+  const double* append_packed(const double* row, bool ghost);
+  int owner_of_column(int cx) const;
+  int cell_column(double px) const;
   void compute_contacts(double dt);
   void integrate(double dt, bool store_parts);
   void integrate_forced(double dt, bool store_parts);
@@ -305,6 +373,21 @@ class ParcelSystem {
   std::vector<std::int32_t> scratch_i_;
   std::vector<std::int32_t> old_offset_, old_partner_id_;
   std::vector<double> old_delta_;
+
+  // Decomposition state.
+  const Communicator* comm_ = nullptr;
+  std::vector<double> cuts_;
+  std::vector<int> first_column_;    ///< of each rank's cell columns, plus the end
+  bool replicated_ = false;          ///< every rank still holds every parcel
+  std::vector<std::uint8_t> ghost_;  ///< per parcel: 1 = another rank's copy
+  std::vector<std::vector<std::int32_t>> send_ghosts_;  ///< per rank: owned parcels it copies
+  std::vector<std::vector<std::int32_t>> recv_ghosts_;  ///< per rank: its ghosts here, same order
+  std::vector<std::vector<double>> send_buf_, recv_buf_;
+  std::vector<std::int32_t> hist_offset_, hist_partner_;  ///< carried history, per table row
+  std::vector<double> hist_delta_;
+  std::vector<std::int64_t> scratch_key_;
+  std::vector<std::uint8_t> scratch_u8_;
+  DecompositionCounters counters_;
 };
 
 }  // namespace dustlift

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "insitu/checkpoint.hpp"
+#include "mpi/mpi_test_main.hpp"
 #include "solver/core/errors.hpp"
 #include "solver/parallel/communicator.hpp"
 #include "solver/scene/scene.hpp"
@@ -260,14 +261,5 @@ TEST(SlabGas, ABlowUpOnOneRankStopsEveryRankWithTheSameMessage) {
 }  // namespace dustlift
 
 int main(int argc, char** argv) {
-  const dustlift::ParallelSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const auto world = dustlift::make_world_communicator();
-  if (world->rank() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  const int result = RUN_ALL_TESTS();
-  // A failure on any rank fails the run (and mpirun's exit code).
-  return world->any(result != 0) ? 1 : 0;
+  return dustlift::run_tests_on_every_rank(argc, argv);
 }

@@ -1,0 +1,496 @@
+// The parcels on x-slabs of MPI ranks (issue 12, docs/parallel.md).
+//
+// Exactness: a decomposed run gives the one-rank run's bits. Each parcel carries its index
+// in the one-rank parcel order (order_key); every rank keeps its table in that order, so the
+// neighbour lists, the contact sums and the cell sort visit parcels as one rank would. The
+// cuts lie on neighbour-cell faces, and cells are numbered along y first, so after a
+// permuting sort rank r's parcels are the one-rank order's positions [offset_r, offset_r +
+// count_r): the new keys need only the counts of the ranks before. Rebuilds, the sub-step
+// count and the cell size are decided collectively. A ghost (a copy of another rank's
+// parcel within contact reach) is never integrated as its own: its forces are skipped and
+// its state is its owner's after every sub-step.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "solver/dem/parcel_system.hpp"
+#include "solver/dem/permute.hpp"
+#include "solver/parallel/communicator.hpp"
+
+namespace dustlift {
+namespace {
+
+/// Doubles of a packed parcel before its history: key, id, the permuted double columns,
+/// the wall history, x_build, y_build, half skin, wall mask, history length.
+std::size_t packed_head(std::size_t permuted_columns) {
+  return 2 + permuted_columns + kWallCount + 5;
+}
+
+class SecondsSince {
+ public:
+  explicit SecondsSince(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~SecondsSince() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  SecondsSince(const SecondsSince&) = delete;
+  SecondsSince& operator=(const SecondsSince&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+void ParcelSystem::set_decomposition(const Communicator& comm, std::vector<double> cuts) {
+  if (cfg_.domain.periodic_x) {
+    throw std::invalid_argument(
+        "ParcelSystem: a periodic channel's parcels cannot be split over ranks");
+  }
+  if (!needs_rebuild_ || rebuilds_ != 0) {
+    throw std::logic_error("ParcelSystem::set_decomposition: call it before the first step");
+  }
+  comm_ = &comm;
+  set_cuts(std::move(cuts));
+  replicated_ = true;
+  const std::size_t n = size();
+  order_key.resize(n);
+  std::iota(order_key.begin(), order_key.end(), std::int64_t{0});
+  ghost_.assign(n, 0);
+  const auto ranks = static_cast<std::size_t>(comm.size());
+  send_ghosts_.assign(ranks, {});
+  recv_ghosts_.assign(ranks, {});
+  send_buf_.assign(ranks, {});
+  recv_buf_.assign(ranks, {});
+}
+
+void ParcelSystem::set_cuts(std::vector<double> cuts) {
+  if (comm_ == nullptr || cuts.size() + 1 != static_cast<std::size_t>(comm_->size())) {
+    throw std::invalid_argument("ParcelSystem::set_cuts: one cut between each two ranks");
+  }
+  for (std::size_t k = 1; k < cuts.size(); ++k) {
+    if (!(cuts[k] >= cuts[k - 1]))
+      throw std::invalid_argument("ParcelSystem::set_cuts: cuts must ascend");
+  }
+  cuts_ = std::move(cuts);
+}
+
+std::size_t ParcelSystem::owned_count() const {
+  if (ghost_.empty()) return size();
+  return static_cast<std::size_t>(std::count(ghost_.begin(), ghost_.end(), std::uint8_t{0}));
+}
+
+int ParcelSystem::cell_column(double px) const {
+  // The cell sort's own expression (neighbour_list.cpp), so that owner and cell agree.
+  return std::clamp(static_cast<int>(std::floor((px - cfg_.domain.x_min) / cell_dx_)), 0,
+                    cells_x_ - 1);
+}
+
+int ParcelSystem::owner_of_column(int cx) const {
+  const auto it = std::upper_bound(first_column_.begin(), first_column_.end(), cx);
+  return std::clamp(static_cast<int>(it - first_column_.begin()) - 1, 0, comm_->size() - 1);
+}
+
+void ParcelSystem::pack_parcel(std::size_t i, bool with_history, std::vector<double>& out) const {
+  out.push_back(
+      static_cast<double>(order_key.empty() ? static_cast<std::int64_t>(i) : order_key[i]));
+  out.push_back(static_cast<double>(id[i]));
+  for (const std::vector<double>* c : builtin_columns()) out.push_back((*c)[i]);
+  out.push_back(inv_mass_real_[i]);
+  out.push_back(inv_inertia_real_[i]);
+  for (const auto& c : attached_) out.push_back(c[i]);
+  for (int w = 0; w < kWallCount; ++w)
+    out.push_back(wall_delta[i * kWallCount + static_cast<std::size_t>(w)]);
+  const bool built = half_skin_.size() == size() && wall_mask_.size() == size();
+  out.push_back(x_build_[i]);
+  out.push_back(y_build_[i]);
+  out.push_back(built ? half_skin_[i] : 0.0);
+  out.push_back(built ? static_cast<double>(wall_mask_[i]) : 0.0);
+  const bool listed = with_history && nbr_offset.size() == size() + 1;
+  const std::int32_t k0 = listed ? nbr_offset[i] : 0, k1 = listed ? nbr_offset[i + 1] : 0;
+  out.push_back(static_cast<double>(k1 - k0));
+  for (std::int32_t k = k0; k < k1; ++k) {
+    out.push_back(
+        static_cast<double>(id[static_cast<std::size_t>(nbr_index[static_cast<std::size_t>(k)])]));
+    out.push_back(nbr_delta[static_cast<std::size_t>(k)]);
+  }
+}
+
+const double* ParcelSystem::append_packed(const double* row, bool ghost) {
+  order_key.push_back(static_cast<std::int64_t>(*row++));
+  id.push_back(static_cast<std::int32_t>(*row++));
+  for (std::vector<double>* c : builtin_columns()) c->push_back(*row++);
+  inv_mass_real_.push_back(*row++);
+  inv_inertia_real_.push_back(*row++);
+  for (auto& c : attached_) c.push_back(*row++);
+  for (int w = 0; w < kWallCount; ++w) wall_delta.push_back(*row++);
+  x_build_.push_back(*row++);
+  y_build_.push_back(*row++);
+  half_skin_.push_back(*row++);
+  wall_mask_.push_back(static_cast<std::uint8_t>(*row++));
+  ghost_.push_back(ghost ? 1 : 0);
+  const auto count = static_cast<std::int32_t>(*row++);
+  for (std::int32_t k = 0; k < count; ++k) {
+    hist_partner_.push_back(static_cast<std::int32_t>(*row++));
+    hist_delta_.push_back(*row++);
+  }
+  hist_offset_.push_back(hist_offset_.back() + count);
+  return row;
+}
+
+void ParcelSystem::reorder_parcels(const std::vector<std::int32_t>& source) {
+  for_each_permuted_column([&](std::vector<double>& v) { permute(v, source, scratch_d_); });
+  permute(id, source, scratch_i_);
+  permute(order_key, source, scratch_key_);
+  permute(ghost_, source, scratch_u8_);
+  permute(x_build_, source, scratch_d_);
+  permute(y_build_, source, scratch_d_);
+  half_skin_.resize(size() > half_skin_.size() ? size() : half_skin_.size());
+  wall_mask_.resize(half_skin_.size());
+  permute(half_skin_, source, scratch_d_);
+  permute(wall_mask_, source, scratch_u8_);
+  const std::size_t n = source.size();
+  scratch_wall_.resize(n * kWallCount);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int w = 0; w < kWallCount; ++w) {
+      scratch_wall_[k * kWallCount + static_cast<std::size_t>(w)] =
+          wall_delta[static_cast<std::size_t>(source[k]) * kWallCount +
+                     static_cast<std::size_t>(w)];
+    }
+  }
+  wall_delta.swap(scratch_wall_);
+  // The carried history (CSR over the rows) follows its rows.
+  std::vector<std::int32_t> offset(n + 1, 0), partner;
+  std::vector<double> delta;
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto s = static_cast<std::size_t>(source[k]);
+    for (std::int32_t q = hist_offset_[s]; q < hist_offset_[s + 1]; ++q) {
+      partner.push_back(hist_partner_[static_cast<std::size_t>(q)]);
+      delta.push_back(hist_delta_[static_cast<std::size_t>(q)]);
+    }
+    offset[k + 1] = static_cast<std::int32_t>(partner.size());
+  }
+  hist_offset_.swap(offset);
+  hist_partner_.swap(partner);
+  hist_delta_.swap(delta);
+}
+
+std::vector<std::int32_t> ParcelSystem::sort_table_by_key() {
+  std::vector<std::int32_t> by_key(size());
+  std::iota(by_key.begin(), by_key.end(), 0);
+  std::sort(by_key.begin(), by_key.end(), [&](std::int32_t a, std::int32_t b) {
+    return order_key[static_cast<std::size_t>(a)] < order_key[static_cast<std::size_t>(b)];
+  });
+  reorder_parcels(by_key);
+  return by_key;
+}
+
+bool ParcelSystem::redistribute() {
+  const SecondsSince timer(counters_.seconds);
+  const Communicator& comm = *comm_;
+  const int ranks = comm.size(), me = comm.rank();
+  if (!x_major_) {
+    throw std::invalid_argument(
+        "ParcelSystem: parcels split over ranks need a domain longer than high");
+  }
+  // Each rank's first cell column: the cuts rounded to the nearest cell face.
+  first_column_.assign(static_cast<std::size_t>(ranks) + 1, 0);
+  for (int q = 1; q < ranks; ++q) {
+    const double c =
+        std::round((cuts_[static_cast<std::size_t>(q - 1)] - cfg_.domain.x_min) / cell_dx_);
+    first_column_[static_cast<std::size_t>(q)] =
+        std::max(first_column_[static_cast<std::size_t>(q - 1)],
+                 static_cast<int>(std::clamp(c, 0.0, double(cells_x_))));
+  }
+  first_column_[static_cast<std::size_t>(ranks)] = cells_x_;
+
+  const std::size_t n0 = size();
+  const bool had_list = comm.any(nbr_offset.size() == n0 + 1);
+  std::vector<int> owner(n0);
+  for (std::size_t i = 0; i < n0; ++i) owner[i] = owner_of_column(cell_column(x[i]));
+
+  // 1. Owned parcels leaving this rank, packed with their history (the list is still valid).
+  for (auto& b : send_buf_) b.clear();
+  if (!replicated_) {
+    for (std::size_t i = 0; i < n0; ++i) {
+      if (ghost_[i] == 0 && owner[i] != me) {
+        pack_parcel(i, had_list, send_buf_[static_cast<std::size_t>(owner[i])]);
+        ++counters_.migrated;
+        bool elongated = false;
+        for (int w = 0; w < kWallCount; ++w)
+          elongated = elongated || wall_delta[i * kWallCount + static_cast<std::size_t>(w)] != 0.0;
+        if (nbr_offset.size() == n0 + 1) {
+          for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k)
+            elongated = elongated || nbr_delta[static_cast<std::size_t>(k)] != 0.0;
+        }
+        counters_.migrated_with_history += elongated ? 1 : 0;
+      }
+    }
+  }
+  // 2. The rows that stay (owned and still ours; while replicated, also the ghosts to be),
+  //    with their history as partner ids.
+  const SkinLimits limits = skin_limits();
+  double speed_max = 0.0;
+  for (std::size_t i = 0; i < n0; ++i) {  // this rank's parcels, those leaving included
+    if (ghost_[i] == 0) speed_max = std::max(speed_max, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]));
+  }
+  // The ghost reach: every pair a rebuild can list (gap below the two skins), in columns.
+  const double s_max = -comm.min(-std::clamp(speed_max * limits.time, limits.base, limits.cap));
+  const int reach = static_cast<int>(std::ceil((2.0 * radius_max_ + 2.0 * s_max) / cell_dx_)) + 1;
+  auto near_rank = [&](int cx, int q) {
+    return cx >= first_column_[static_cast<std::size_t>(q)] - reach &&
+           cx < first_column_[static_cast<std::size_t>(q) + 1] + reach;
+  };
+  for (auto& l : send_ghosts_) l.clear();
+  for (auto& l : recv_ghosts_) l.clear();
+  std::vector<std::int32_t> keep;
+  keep.reserve(n0);
+  for (std::size_t i = 0; i < n0; ++i) {
+    const bool mine = ghost_[i] == 0 && owner[i] == me;
+    const bool ghost_to_be = replicated_ && owner[i] != me && near_rank(cell_column(x[i]), me);
+    if (mine || ghost_to_be) keep.push_back(static_cast<std::int32_t>(i));
+  }
+  hist_offset_.assign(n0 + 1, 0);
+  hist_partner_.clear();
+  hist_delta_.clear();
+  const bool listed_here = had_list && nbr_offset.size() == n0 + 1;
+  for (std::size_t i = 0; i < n0; ++i) {
+    if (listed_here && ghost_[i] == 0) {
+      for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
+        hist_partner_.push_back(
+            id[static_cast<std::size_t>(nbr_index[static_cast<std::size_t>(k)])]);
+        hist_delta_.push_back(nbr_delta[static_cast<std::size_t>(k)]);
+      }
+    }
+    hist_offset_[i + 1] = static_cast<std::int32_t>(hist_partner_.size());
+  }
+  if (replicated_) {
+    for (std::size_t i = 0; i < n0; ++i) ghost_[i] = owner[i] != me ? 1 : 0;
+  }
+  reorder_parcels(keep);
+
+  auto exchange_sized = [&](bool counts_known) {
+    // Sizes first when the receiver cannot know them, then the payload.
+    if (!counts_known) {
+      std::vector<std::vector<double>> sizes(static_cast<std::size_t>(ranks)),
+          got(static_cast<std::size_t>(ranks));
+      for (int q = 0; q < ranks; ++q) {
+        if (q == me) continue;
+        sizes[static_cast<std::size_t>(q)] = {
+            static_cast<double>(send_buf_[static_cast<std::size_t>(q)].size())};
+        got[static_cast<std::size_t>(q)].resize(1);
+      }
+      comm.exchange(sizes, got);
+      for (int q = 0; q < ranks; ++q) {
+        recv_buf_[static_cast<std::size_t>(q)].resize(
+            q == me ? 0 : static_cast<std::size_t>(got[static_cast<std::size_t>(q)][0]));
+      }
+    }
+    comm.exchange(send_buf_, recv_buf_);
+    for (int q = 0; q < ranks; ++q) {
+      const std::size_t sent = send_buf_[static_cast<std::size_t>(q)].size();
+      counters_.doubles_sent += static_cast<long long>(sent);
+      counters_.messages += sent > 0 ? 1 : 0;
+    }
+  };
+
+  if (!replicated_) {
+    // 3. Take in the parcels that came to this rank.
+    exchange_sized(false);
+    const std::size_t head = packed_head(kBuiltinColumns + 2 + attached_.size());
+    for (int q = 0; q < ranks; ++q) {
+      const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
+      const double* row = b.data();
+      const double* end = b.data() + b.size();
+      while (row < end) {
+        if (row + head > end) throw std::runtime_error("ParcelSystem: a truncated parcel message");
+        row = append_packed(row, false);
+      }
+    }
+    // 4. Ghosts: this rank's parcels within reach of another rank's columns.
+    for (auto& b : send_buf_) b.clear();
+    for (std::size_t i = 0; i < size(); ++i) {
+      const int cx = cell_column(x[i]);
+      for (int q = 0; q < ranks; ++q) {
+        if (q == me || !near_rank(cx, q)) continue;
+        send_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
+        pack_parcel(i, false, send_buf_[static_cast<std::size_t>(q)]);
+        ++counters_.ghosts_sent;
+      }
+    }
+    exchange_sized(false);
+    for (int q = 0; q < ranks; ++q) {
+      const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
+      const double* row = b.data();
+      const double* end = b.data() + b.size();
+      while (row < end) {
+        recv_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(size()));
+        row = append_packed(row, true);
+      }
+    }
+  }
+  // 5. The table in the one-rank order; the exchange lists follow their rows.
+  const std::size_t n = size();
+  const std::vector<std::int32_t> by_key = sort_table_by_key();
+  std::vector<std::int32_t> new_of_old(n);
+  for (std::size_t k = 0; k < n; ++k)
+    new_of_old[static_cast<std::size_t>(by_key[k])] = static_cast<std::int32_t>(k);
+  if (replicated_) {
+    // The ghosts each rank will receive and send, chosen alike on both sides.
+    for (std::size_t i = 0; i < n; ++i) {
+      const int cx = cell_column(x[i]);
+      if (ghost_[i] != 0) {
+        recv_ghosts_[static_cast<std::size_t>(owner_of_column(cx))].push_back(
+            static_cast<std::int32_t>(i));
+        continue;
+      }
+      for (int q = 0; q < ranks; ++q) {
+        if (q != me && near_rank(cx, q))
+          send_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
+      }
+    }
+    replicated_ = false;
+  } else {
+    for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
+      for (auto& l : *lists) {
+        for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
+      }
+    }
+  }
+  old_offset_ = hist_offset_;
+  old_partner_id_ = hist_partner_;
+  old_delta_ = hist_delta_;
+  return had_list;
+}
+
+void ParcelSystem::after_distributed_sort(bool permuted) {
+  if (!permuted) return;
+  const SecondsSince timer(counters_.seconds);
+  const std::size_t n = size();
+  std::vector<std::int32_t> new_of_old(n);
+  for (std::size_t k = 0; k < n; ++k)
+    new_of_old[static_cast<std::size_t>(old_index_[k])] = static_cast<std::int32_t>(k);
+  for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
+    for (auto& l : *lists) {
+      for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
+    }
+  }
+  // This rank's cells follow those of the ranks before it: its parcels take the next keys.
+  const Communicator& comm = *comm_;
+  const double mine = static_cast<double>(owned_count());
+  std::vector<std::vector<double>> counts;
+  comm.gather(std::span<const double>(&mine, 1), counts);
+  std::vector<double> flat;
+  if (comm.is_root()) {
+    for (const auto& c : counts) flat.push_back(c.at(0));
+  }
+  comm.broadcast(flat);
+  std::int64_t next = 0;
+  for (int q = 0; q < comm.rank(); ++q)
+    next += static_cast<std::int64_t>(flat.at(static_cast<std::size_t>(q)));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (ghost_[i] == 0) order_key[i] = next++;
+  }
+  // The ghosts learn their owners' new keys.
+  const int ranks = comm.size();
+  for (int q = 0; q < ranks; ++q) {
+    auto& out = send_buf_[static_cast<std::size_t>(q)];
+    out.clear();
+    for (std::int32_t e : send_ghosts_[static_cast<std::size_t>(q)])
+      out.push_back(static_cast<double>(order_key[static_cast<std::size_t>(e)]));
+    recv_buf_[static_cast<std::size_t>(q)].resize(recv_ghosts_[static_cast<std::size_t>(q)].size());
+  }
+  comm.exchange(send_buf_, recv_buf_);
+  for (int q = 0; q < ranks; ++q) {
+    const auto& l = recv_ghosts_[static_cast<std::size_t>(q)];
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      order_key[static_cast<std::size_t>(l[k])] =
+          static_cast<std::int64_t>(recv_buf_[static_cast<std::size_t>(q)][k]);
+    }
+    counters_.doubles_sent += static_cast<long long>(send_buf_[static_cast<std::size_t>(q)].size());
+    counters_.messages += send_buf_[static_cast<std::size_t>(q)].empty() ? 0 : 1;
+  }
+}
+
+void ParcelSystem::refresh_ghost_kinematics() {
+  const SecondsSince timer(counters_.seconds);
+  const int ranks = comm_->size();
+  const std::array<std::vector<double>*, 5> cols{&x, &y, &vx, &vy, &omega};
+  for (int q = 0; q < ranks; ++q) {
+    auto& out = send_buf_[static_cast<std::size_t>(q)];
+    const auto& l = send_ghosts_[static_cast<std::size_t>(q)];
+    out.resize(l.size() * cols.size());
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      for (std::size_t c = 0; c < cols.size(); ++c)
+        out[k * cols.size() + c] = (*cols[c])[static_cast<std::size_t>(l[k])];
+    }
+    recv_buf_[static_cast<std::size_t>(q)].resize(recv_ghosts_[static_cast<std::size_t>(q)].size() *
+                                                  cols.size());
+    counters_.doubles_sent += static_cast<long long>(out.size());
+    counters_.messages += out.empty() ? 0 : 1;
+  }
+  comm_->exchange(send_buf_, recv_buf_);
+  for (int q = 0; q < ranks; ++q) {
+    const auto& in = recv_buf_[static_cast<std::size_t>(q)];
+    const auto& l = recv_ghosts_[static_cast<std::size_t>(q)];
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      for (std::size_t c = 0; c < cols.size(); ++c)
+        (*cols[c])[static_cast<std::size_t>(l[k])] = in[k * cols.size() + c];
+    }
+  }
+}
+
+void ParcelSystem::pack_owned(std::vector<double>& out) const {
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (!is_ghost(i)) pack_parcel(i, true, out);
+  }
+}
+
+void ParcelSystem::assign_packed(const std::vector<std::vector<double>>& pieces) {
+  // Start from an empty table with this system's columns.
+  const std::vector<std::int32_t> none;
+  order_key.resize(size());
+  ghost_.assign(size(), 0);
+  x_build_.resize(size());
+  y_build_.resize(size());
+  hist_offset_.assign(size() + 1, 0);
+  hist_partner_.clear();
+  hist_delta_.clear();
+  reorder_parcels(none);
+  half_skin_.clear();
+  wall_mask_.clear();
+  for (const auto& piece : pieces) {
+    const double* row = piece.data();
+    const double* end = piece.data() + piece.size();
+    while (row < end) row = append_packed(row, false);
+  }
+  const std::size_t n = size();
+  const std::vector<std::int32_t> by_key = sort_table_by_key();
+  // The history becomes the neighbour list, partners by index.
+  std::unordered_map<std::int32_t, std::int32_t> index_of;
+  for (std::size_t i = 0; i < n; ++i) index_of[id[i]] = static_cast<std::int32_t>(i);
+  nbr_offset = hist_offset_;
+  nbr_index.resize(hist_partner_.size());
+  for (std::size_t k = 0; k < hist_partner_.size(); ++k) {
+    const auto it = index_of.find(hist_partner_[k]);
+    if (it == index_of.end())
+      throw std::invalid_argument("ParcelSystem::assign_packed: a partner is missing");
+    nbr_index[k] = it->second;
+  }
+  nbr_image.assign(hist_partner_.size(), 0);
+  nbr_delta = hist_delta_;
+  inv_skin2_.resize(half_skin_.size());
+  for (std::size_t i = 0; i < half_skin_.size(); ++i) {
+    inv_skin2_[i] = half_skin_[i] > 0.0 ? 1.0 / (half_skin_[i] * half_skin_[i]) : 0.0;
+  }
+  order_key.clear();
+  ghost_.clear();
+}
+
+}  // namespace dustlift

@@ -1,0 +1,21 @@
+#pragma once
+// Gathers of per-parcel arrays, shared by the cell sort and the decomposition's reordering.
+#include <cstdint>
+#include <vector>
+
+#include "solver/dem/parcel_system.hpp"
+
+namespace dustlift {
+
+/// v[k] = old v[order[k]] for k < order.size() (a permutation or a selection), using
+/// `scratch` (same element type) as buffer.
+template <class T>
+void permute(std::vector<T>& v, const std::vector<std::int32_t>& order, std::vector<T>& scratch) {
+  const std::size_t n = order.size();
+  scratch.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t k = 0; k < n; ++k) scratch[k] = v[order[k]];
+  v.swap(scratch);
+}
+
+}  // namespace dustlift

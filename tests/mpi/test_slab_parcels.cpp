@@ -1,0 +1,217 @@
+// The DEM parcels on x-slabs over MPI ranks (issue 12), run by ctest as `mpirun -np 2`:
+// both ranks run the decomposed system, rank 0 gathers it and compares it bit for bit with
+// the same system run on one rank in-process (positions, velocities, spins, forces, the
+// parcel order, every neighbour slot and its tangential history, the wall history).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mpi/mpi_test_main.hpp"
+#include "solver/dem/parcel_system.hpp"
+#include "solver/parallel/communicator.hpp"
+
+namespace dustlift {
+namespace {
+
+const Communicator& world() {
+  static const std::unique_ptr<Communicator> w = make_world_communicator();
+  return *w;
+}
+
+constexpr double kCut = 5e-3;  // m: rank 0 | rank 1
+
+// A soft contact law (k_n = 500 N/m) so that a sub-step is 1e-7 s and parcels cross several
+// diameters in a few thousand steps; strong gravity keeps stacked parcels pressed together.
+DemConfig box_config(double x_max = 0.01) {
+  DemConfig c;
+  c.enabled = true;
+  c.contact.k_n = 500.0;
+  c.contact.k_t = 100.0;
+  c.contact.damping = 1e-6;
+  c.contact.friction = 0.5;
+  c.wall_contact = c.contact;
+  c.domain = {0.0, x_max, -0.002, 0.002, true, true, true, true, false};
+  c.gravity_y = -2000.0;
+  return c;
+}
+
+ParcelInit parcel(double x, double y, double vx, double vy, double omega = 0.0) {
+  ParcelInit p;
+  p.x = x;
+  p.y = y;
+  p.vx = vx;
+  p.vy = vy;
+  p.omega = omega;
+  return p;
+}
+
+// A packed bed of 36 x 4 touching parcels on the floor across the cut (jittered a little),
+// drifting towards rank 1 until the floor's friction stops it, two
+// stacked pairs sliding over it towards the cut from either side, an oblique head-on
+// collision at the cut, and one fast parcel (a fast skin, searched over a wide block) shot
+// into the bed from rank 1's side.
+void add_scene(ParcelSystem& s) {
+  unsigned state = 12345u;
+  auto jitter = [&state] {
+    state = state * 1103515245u + 12345u;
+    return static_cast<double>((state >> 8) & 0xffff) / 65535.0 - 0.5;
+  };
+  for (int row = 0; row < 4; ++row) {
+    for (int col = 0; col < 36; ++col) {
+      const double x = 3.2e-3 + col * 100.5e-6 + 0.4e-6 * jitter();
+      const double y = -1.95e-3 + row * 100e-6;
+      s.add_parcel(parcel(x, y, 0.5 + 0.05 * jitter(), 0.05 * jitter(), 200.0 * jitter()));
+    }
+  }
+  // Stacked pairs sliding over the bed towards the cut, one from each side.
+  s.add_parcel(parcel(4.7e-3, -1.55e-3, 2.5, 0.0));
+  s.add_parcel(parcel(4.7e-3, -1.55e-3 + 100e-6, 2.5, 0.0));
+  s.add_parcel(parcel(5.3e-3, -1.55e-3, -3.0, 0.0));
+  s.add_parcel(parcel(5.3e-3, -1.55e-3 + 100e-6, -3.0, 0.0));
+  // Head-on, offset by 40 um in y, meeting near the cut.
+  s.add_parcel(parcel(4.6e-3, 0.5e-3, 1.5, 0.0));
+  s.add_parcel(parcel(5.4e-3, 0.54e-3, -1.5, 0.0));
+  // A fast parcel from rank 1's side, diving into the bed.
+  s.add_parcel(parcel(6.5e-3, -1.2e-3, -12.0, -2.0));
+}
+
+void run(ParcelSystem& s, int steps, const std::vector<std::pair<int, double>>& moves = {}) {
+  const double dt = s.stable_time_step();
+  for (int k = 0; k < steps; ++k) {
+    for (const auto& [at, cut] : moves) {
+      if (k == at && s.decomposed()) s.set_cuts({cut});
+    }
+    s.step(dt);
+  }
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Gathers the decomposed system on rank 0 (pack_owned, assign_packed) and compares it with a
+// one-rank run of the same scene. Returns the number of differing arrays (rank 0).
+using Scene = void (*)(ParcelSystem&);
+
+int differences_from_one_rank(const ParcelSystem& decomposed, int steps,
+                              const std::vector<std::pair<int, double>>& moves, std::string& report,
+                              Scene scene = add_scene, double x_max = 0.01) {
+  std::vector<double> mine;
+  decomposed.pack_owned(mine);
+  std::vector<std::vector<double>> pieces;
+  world().gather(mine, pieces);
+  if (!world().is_root()) return 0;
+  ParcelSystem gathered(box_config(x_max));
+  gathered.assign_packed(pieces);
+  ParcelSystem serial(box_config(x_max));
+  scene(serial);
+  run(serial, steps, moves);
+  int differ = 0;
+  auto check = [&](bool same, const std::string& what) {
+    if (!same) {
+      ++differ;
+      report += what + " ";
+    }
+  };
+  check(gathered.size() == serial.size(), "size");
+  if (gathered.size() != serial.size()) return differ;
+  const auto g = gathered.builtin_columns();
+  const auto o = serial.builtin_columns();
+  for (std::size_t c = 0; c < ParcelSystem::kBuiltinColumns; ++c) {
+    check(same_bits(*g[c], *o[c]), ParcelSystem::builtin_specs()[c].name);
+  }
+  check(same_bits(gathered.id, serial.id), "id (parcel order)");
+  check(same_bits(gathered.wall_delta, serial.wall_delta), "wall_delta");
+  check(same_bits(gathered.nbr_offset, serial.nbr_offset), "nbr_offset");
+  check(same_bits(gathered.nbr_index, serial.nbr_index), "nbr_index");
+  check(same_bits(gathered.nbr_delta, serial.nbr_delta), "nbr_delta");
+  const ParcelInternals gi = gathered.internals(), si = serial.internals();
+  check(same_bits(gi.x_build, si.x_build), "x_build");
+  check(same_bits(gi.half_skin, si.half_skin), "half_skin");
+  return differ;
+}
+
+TEST(SlabParcels, ABedAcrossTheCutMatchesOneRankBitForBit) {
+  ASSERT_EQ(world().size(), 2) << "run under mpirun -np 2";
+  constexpr int kSteps = 3000;
+  ParcelSystem s(box_config());
+  add_scene(s);
+  s.set_decomposition(world(), {kCut});
+  run(s, kSteps);
+  const auto& c = s.decomposition_counters();
+  // Parcels left each rank for the other, and ghosts went both ways.
+  EXPECT_GT(c.migrated, 0) << "rank " << world().rank();
+  EXPECT_GT(c.ghosts_sent, 0) << "rank " << world().rank();
+  EXPECT_EQ(world().sum(static_cast<long long>(s.owned_count())), 151);
+  std::string report;
+  EXPECT_EQ(differences_from_one_rank(s, kSteps, {}, report), 0) << report;
+  // The cell sort renumbered the parcels across ranks on the way.
+  EXPECT_GE(s.data_permutations(), 3);
+}
+
+// Two parcels stacked on the floor slide across the cut at 5 m/s, to the right from rank 0
+// or to the left from rank 1: the lower one slides on the floor all the way (a wall
+// elongation it must carry to its new owner), the upper one rides on it.
+void add_stack_moving_right(ParcelSystem& s) {
+  s.add_parcel(parcel(4.85e-3, -1.95e-3, 5.0, 0.0));
+  s.add_parcel(parcel(4.85e-3, -1.85e-3, 5.0, 0.0));
+}
+void add_stack_moving_left(ParcelSystem& s) {
+  s.add_parcel(parcel(5.15e-3, -1.95e-3, -5.0, 0.0));
+  s.add_parcel(parcel(5.15e-3, -1.85e-3, -5.0, 0.0));
+}
+
+TEST(SlabParcels, ATouchingPairCrossesTheCutEitherWayWithItsHistory) {
+  constexpr int kSteps = 1500;
+  for (const auto& [scene, from] :
+       {std::pair<Scene, int>{add_stack_moving_right, 0}, {add_stack_moving_left, 1}}) {
+    ParcelSystem s(box_config());
+    scene(s);
+    s.set_decomposition(world(), {kCut});
+    run(s, kSteps);
+    // The rank the pair left handed it over with its floor elongation.
+    if (world().rank() == from) {
+      EXPECT_GE(s.decomposition_counters().migrated_with_history, 1) << "from rank " << from;
+      EXPECT_EQ(s.owned_count(), 0u) << "from rank " << from;
+    }
+    std::string report;
+    EXPECT_EQ(differences_from_one_rank(s, kSteps, {}, report, scene), 0)
+        << report << "from rank " << from;
+  }
+}
+
+TEST(SlabParcels, MovingCutsChangeNothing) {
+  constexpr int kSteps = 2500;
+  const std::vector<std::pair<int, double>> moves = {{700, 3.6e-3}, {1500, 6.1e-3}, {2000, 4.9e-3}};
+  ParcelSystem s(box_config());
+  add_scene(s);
+  s.set_decomposition(world(), {kCut});
+  run(s, kSteps, moves);
+  std::string report;
+  EXPECT_EQ(differences_from_one_rank(s, kSteps, moves, report), 0) << report;
+}
+
+TEST(SlabParcels, ARankWithoutParcelsTakesPart) {
+  // Every parcel starts on rank 0's side; rank 1 holds nothing until the fast one arrives.
+  constexpr int kSteps = 1500;
+  const std::vector<std::pair<int, double>> moves = {{0, 9.5e-3}};
+  ParcelSystem s(box_config());
+  add_scene(s);
+  s.set_decomposition(world(), {9.5e-3});
+  run(s, kSteps, moves);
+  std::string report;
+  EXPECT_EQ(differences_from_one_rank(s, kSteps, moves, report), 0) << report;
+}
+
+}  // namespace
+}  // namespace dustlift
+
+int main(int argc, char** argv) {
+  return dustlift::run_tests_on_every_rank(argc, argv);
+}
