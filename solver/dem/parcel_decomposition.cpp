@@ -145,14 +145,16 @@ const double* ParcelSystem::append_packed(const double* row, bool ghost) {
 }
 
 void ParcelSystem::reorder_parcels(const std::vector<std::int32_t>& source) {
+  // Before the first rebuild the rebuild's own arrays are empty: give them the table's rows.
+  const std::size_t rows = size();
+  half_skin_.resize(rows);
+  wall_mask_.resize(rows);
   for_each_permuted_column([&](std::vector<double>& v) { permute(v, source, scratch_d_); });
   permute(id, source, scratch_i_);
   permute(order_key, source, scratch_key_);
   permute(ghost_, source, scratch_u8_);
   permute(x_build_, source, scratch_d_);
   permute(y_build_, source, scratch_d_);
-  half_skin_.resize(size() > half_skin_.size() ? size() : half_skin_.size());
-  wall_mask_.resize(half_skin_.size());
   permute(half_skin_, source, scratch_d_);
   permute(wall_mask_, source, scratch_u8_);
   const std::size_t n = source.size();
