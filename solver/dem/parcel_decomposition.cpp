@@ -53,12 +53,9 @@ void ParcelSystem::set_decomposition(const Communicator& comm, std::vector<doubl
     throw std::invalid_argument(
         "ParcelSystem: a periodic channel's parcels cannot be split over ranks");
   }
-  if (!needs_rebuild_ || rebuilds_ != 0) {
-    throw std::logic_error("ParcelSystem::set_decomposition: call it before the first step");
-  }
+  if (comm_ != nullptr) throw std::logic_error("ParcelSystem::set_decomposition: already split");
   comm_ = &comm;
   set_cuts(std::move(cuts));
-  replicated_ = true;
   const std::size_t n = size();
   order_key.resize(n);
   std::iota(order_key.begin(), order_key.end(), std::int64_t{0});
@@ -68,6 +65,131 @@ void ParcelSystem::set_decomposition(const Communicator& comm, std::vector<doubl
   recv_ghosts_.assign(ranks, {});
   send_buf_.assign(ranks, {});
   recv_buf_.assign(ranks, {});
+  split_replicated();
+}
+
+void ParcelSystem::update_first_columns() {
+  if (!x_major_) {
+    throw std::invalid_argument(
+        "ParcelSystem: parcels split over ranks need a domain longer than high");
+  }
+  // Each rank's first cell column: the cuts rounded to the nearest cell face.
+  const int ranks = comm_->size();
+  first_column_.assign(static_cast<std::size_t>(ranks) + 1, 0);
+  for (int q = 1; q < ranks; ++q) {
+    const double c =
+        std::round((cuts_[static_cast<std::size_t>(q - 1)] - cfg_.domain.x_min) / cell_dx_);
+    first_column_[static_cast<std::size_t>(q)] =
+        std::max(first_column_[static_cast<std::size_t>(q - 1)],
+                 static_cast<int>(std::clamp(c, 0.0, double(cells_x_))));
+  }
+  first_column_[static_cast<std::size_t>(ranks)] = cells_x_;
+}
+
+int ParcelSystem::ghost_reach_columns() const {
+  // Every pair a rebuild can list has a gap below the two skins: 2 r_max + 2 s_max, with
+  // s_max the largest skin any parcel may get now or still move by (the last rebuild's).
+  const SkinLimits limits = skin_limits();
+  double speed_max = 0.0, skin_max = limits.base;
+  const bool built = half_skin_.size() == size();
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (ghost_[i] != 0) continue;
+    speed_max = std::max(speed_max, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]));
+    if (built) skin_max = std::max(skin_max, half_skin_[i]);
+  }
+  const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
+  const double s_max = -comm_->min(-s);
+  return static_cast<int>(std::ceil((2.0 * radius_max_ + 2.0 * s_max + ghost_margin_) / cell_dx_)) +
+         1;
+}
+
+void ParcelSystem::split_replicated() {
+  // Every rank holds the same table: each keeps its own parcels, and as ghosts the others'
+  // within reach of its columns and every listed partner of its own (a system split between
+  // two rebuilds keeps its lists, so a restart continues bitwise).
+  const SecondsSince timer(counters_.seconds);
+  update_cell_geometry();
+  update_first_columns();
+  const int ranks = comm_->size(), me = comm_->rank();
+  const std::size_t n = size();
+  const int reach = ghost_reach_columns();
+  std::vector<int> owner(n), column(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    column[i] = cell_column(x[i]);
+    owner[i] = owner_of_column(column[i]);
+  }
+  // needed[q][i]: rank q holds parcel i (as its own or as a ghost).
+  std::vector<std::vector<std::uint8_t>> needed(static_cast<std::size_t>(ranks),
+                                                std::vector<std::uint8_t>(n, 0));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int q = 0; q < ranks; ++q) {
+      const bool near = column[i] >= first_column_[static_cast<std::size_t>(q)] - reach &&
+                        column[i] < first_column_[static_cast<std::size_t>(q) + 1] + reach;
+      if (owner[i] == q || near) needed[static_cast<std::size_t>(q)][i] = 1;
+    }
+  }
+  const bool listed = nbr_offset.size() == n + 1;
+  if (listed) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
+        needed[static_cast<std::size_t>(owner[i])]
+              [static_cast<std::size_t>(nbr_index[static_cast<std::size_t>(k)])] = 1;
+      }
+    }
+  }
+  const std::vector<std::uint8_t>& mine = needed[static_cast<std::size_t>(me)];
+  std::vector<std::int32_t> keep, new_index(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mine[i] == 0) continue;
+    new_index[i] = static_cast<std::int32_t>(keep.size());
+    keep.push_back(static_cast<std::int32_t>(i));
+  }
+  // The exchange lists, in table order on both sides.
+  for (std::size_t i = 0; i < n; ++i) {
+    if (owner[i] == me) {
+      for (int q = 0; q < ranks; ++q) {
+        if (q != me && needed[static_cast<std::size_t>(q)][i] != 0) {
+          send_ghosts_[static_cast<std::size_t>(q)].push_back(new_index[i]);
+        }
+      }
+    } else if (mine[i] != 0) {
+      recv_ghosts_[static_cast<std::size_t>(owner[i])].push_back(new_index[i]);
+    }
+  }
+  // Own parcels keep their lists (partners renumbered); ghosts have none.
+  if (listed) {
+    std::vector<std::int32_t> offset(keep.size() + 1, 0), index;
+    std::vector<std::int8_t> image;
+    std::vector<double> delta;
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      const auto i = static_cast<std::size_t>(keep[k]);
+      if (owner[i] == me) {
+        for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
+          const auto slot = static_cast<std::size_t>(s);
+          index.push_back(new_index[static_cast<std::size_t>(nbr_index[slot])]);
+          image.push_back(nbr_image[slot]);
+          delta.push_back(nbr_delta[slot]);
+        }
+      }
+      offset[k + 1] = static_cast<std::int32_t>(index.size());
+    }
+    nbr_offset.swap(offset);
+    nbr_index.swap(index);
+    nbr_image.swap(image);
+    nbr_delta.swap(delta);
+  }
+  for (std::size_t i = 0; i < n; ++i) ghost_[i] = owner[i] != me ? 1 : 0;
+  hist_offset_.assign(n + 1, 0);
+  hist_partner_.clear();
+  hist_delta_.clear();
+  reorder_parcels(keep);
+  if (listed) {
+    // Between rebuilds a ghost never asks for one (as after a rebuild).
+    inv_skin2_.resize(size());
+    for (std::size_t i = 0; i < size(); ++i) {
+      inv_skin2_[i] = ghost_[i] != 0 ? 0.0 : 1.0 / (half_skin_[i] * half_skin_[i]);
+    }
+  }
 }
 
 void ParcelSystem::set_cuts(std::vector<double> cuts) {
@@ -197,20 +319,7 @@ bool ParcelSystem::redistribute() {
   const SecondsSince timer(counters_.seconds);
   const Communicator& comm = *comm_;
   const int ranks = comm.size(), me = comm.rank();
-  if (!x_major_) {
-    throw std::invalid_argument(
-        "ParcelSystem: parcels split over ranks need a domain longer than high");
-  }
-  // Each rank's first cell column: the cuts rounded to the nearest cell face.
-  first_column_.assign(static_cast<std::size_t>(ranks) + 1, 0);
-  for (int q = 1; q < ranks; ++q) {
-    const double c =
-        std::round((cuts_[static_cast<std::size_t>(q - 1)] - cfg_.domain.x_min) / cell_dx_);
-    first_column_[static_cast<std::size_t>(q)] =
-        std::max(first_column_[static_cast<std::size_t>(q - 1)],
-                 static_cast<int>(std::clamp(c, 0.0, double(cells_x_))));
-  }
-  first_column_[static_cast<std::size_t>(ranks)] = cells_x_;
+  update_first_columns();
 
   const std::size_t n0 = size();
   const bool had_list = comm.any(nbr_offset.size() == n0 + 1);
@@ -219,7 +328,7 @@ bool ParcelSystem::redistribute() {
 
   // 1. Owned parcels leaving this rank, packed with their history (the list is still valid).
   for (auto& b : send_buf_) b.clear();
-  if (!replicated_) {
+  {
     for (std::size_t i = 0; i < n0; ++i) {
       if (ghost_[i] == 0 && owner[i] != me) {
         pack_parcel(i, had_list, send_buf_[static_cast<std::size_t>(owner[i])]);
@@ -235,16 +344,8 @@ bool ParcelSystem::redistribute() {
       }
     }
   }
-  // 2. The rows that stay (owned and still ours; while replicated, also the ghosts to be),
-  //    with their history as partner ids.
-  const SkinLimits limits = skin_limits();
-  double speed_max = 0.0;
-  for (std::size_t i = 0; i < n0; ++i) {  // this rank's parcels, those leaving included
-    if (ghost_[i] == 0) speed_max = std::max(speed_max, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]));
-  }
-  // The ghost reach: every pair a rebuild can list (gap below the two skins), in columns.
-  const double s_max = -comm.min(-std::clamp(speed_max * limits.time, limits.base, limits.cap));
-  const int reach = static_cast<int>(std::ceil((2.0 * radius_max_ + 2.0 * s_max) / cell_dx_)) + 1;
+  // 2. The rows that stay (owned and still ours), with their history as partner ids.
+  const int reach = ghost_reach_columns();
   auto near_rank = [&](int cx, int q) {
     return cx >= first_column_[static_cast<std::size_t>(q)] - reach &&
            cx < first_column_[static_cast<std::size_t>(q) + 1] + reach;
@@ -254,9 +355,7 @@ bool ParcelSystem::redistribute() {
   std::vector<std::int32_t> keep;
   keep.reserve(n0);
   for (std::size_t i = 0; i < n0; ++i) {
-    const bool mine = ghost_[i] == 0 && owner[i] == me;
-    const bool ghost_to_be = replicated_ && owner[i] != me && near_rank(cell_column(x[i]), me);
-    if (mine || ghost_to_be) keep.push_back(static_cast<std::int32_t>(i));
+    if (ghost_[i] == 0 && owner[i] == me) keep.push_back(static_cast<std::int32_t>(i));
   }
   hist_offset_.assign(n0 + 1, 0);
   hist_partner_.clear();
@@ -271,9 +370,6 @@ bool ParcelSystem::redistribute() {
       }
     }
     hist_offset_[i + 1] = static_cast<std::int32_t>(hist_partner_.size());
-  }
-  if (replicated_) {
-    for (std::size_t i = 0; i < n0; ++i) ghost_[i] = owner[i] != me ? 1 : 0;
   }
   reorder_parcels(keep);
 
@@ -302,7 +398,7 @@ bool ParcelSystem::redistribute() {
     }
   };
 
-  if (!replicated_) {
+  {
     // 3. Take in the parcels that came to this rank.
     exchange_sized(false);
     const std::size_t head = packed_head(kBuiltinColumns + 2 + attached_.size());
@@ -343,26 +439,9 @@ bool ParcelSystem::redistribute() {
   std::vector<std::int32_t> new_of_old(n);
   for (std::size_t k = 0; k < n; ++k)
     new_of_old[static_cast<std::size_t>(by_key[k])] = static_cast<std::int32_t>(k);
-  if (replicated_) {
-    // The ghosts each rank will receive and send, chosen alike on both sides.
-    for (std::size_t i = 0; i < n; ++i) {
-      const int cx = cell_column(x[i]);
-      if (ghost_[i] != 0) {
-        recv_ghosts_[static_cast<std::size_t>(owner_of_column(cx))].push_back(
-            static_cast<std::int32_t>(i));
-        continue;
-      }
-      for (int q = 0; q < ranks; ++q) {
-        if (q != me && near_rank(cx, q))
-          send_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
-      }
-    }
-    replicated_ = false;
-  } else {
-    for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
-      for (auto& l : *lists) {
-        for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
-      }
+  for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
+    for (auto& l : *lists) {
+      for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
     }
   }
   old_offset_ = hist_offset_;
@@ -420,20 +499,20 @@ void ParcelSystem::after_distributed_sort(bool permuted) {
   }
 }
 
-void ParcelSystem::refresh_ghost_kinematics() {
+void ParcelSystem::refresh_ghosts(const std::vector<std::vector<double>*>& columns) {
   const SecondsSince timer(counters_.seconds);
   const int ranks = comm_->size();
-  const std::array<std::vector<double>*, 5> cols{&x, &y, &vx, &vy, &omega};
+  const std::size_t width = columns.size();
   for (int q = 0; q < ranks; ++q) {
     auto& out = send_buf_[static_cast<std::size_t>(q)];
     const auto& l = send_ghosts_[static_cast<std::size_t>(q)];
-    out.resize(l.size() * cols.size());
+    out.resize(l.size() * width);
     for (std::size_t k = 0; k < l.size(); ++k) {
-      for (std::size_t c = 0; c < cols.size(); ++c)
-        out[k * cols.size() + c] = (*cols[c])[static_cast<std::size_t>(l[k])];
+      for (std::size_t c = 0; c < width; ++c)
+        out[k * width + c] = (*columns[c])[static_cast<std::size_t>(l[k])];
     }
     recv_buf_[static_cast<std::size_t>(q)].resize(recv_ghosts_[static_cast<std::size_t>(q)].size() *
-                                                  cols.size());
+                                                  width);
     counters_.doubles_sent += static_cast<long long>(out.size());
     counters_.messages += out.empty() ? 0 : 1;
   }
@@ -442,10 +521,25 @@ void ParcelSystem::refresh_ghost_kinematics() {
     const auto& in = recv_buf_[static_cast<std::size_t>(q)];
     const auto& l = recv_ghosts_[static_cast<std::size_t>(q)];
     for (std::size_t k = 0; k < l.size(); ++k) {
-      for (std::size_t c = 0; c < cols.size(); ++c)
-        (*cols[c])[static_cast<std::size_t>(l[k])] = in[k * cols.size() + c];
+      for (std::size_t c = 0; c < width; ++c)
+        (*columns[c])[static_cast<std::size_t>(l[k])] = in[k * width + c];
     }
   }
+}
+
+void ParcelSystem::refresh_ghost_kinematics() {
+  refresh_ghosts({&x, &y, &vx, &vy, &omega});
+}
+
+void ParcelSystem::refresh_ghost_columns(const std::vector<ParcelColumn>& columns) {
+  if (comm_ == nullptr) return;
+  std::vector<std::vector<double>*> arrays;
+  for (const ParcelColumn c : columns) arrays.push_back(&attached_.at(c.index));
+  refresh_ghosts(arrays);
+}
+
+std::string ParcelSystem::first_failure(const std::string& local) const {
+  return comm_ != nullptr ? comm_->first_nonempty(local) : local;
 }
 
 void ParcelSystem::pack_owned(std::vector<double>& out) const {

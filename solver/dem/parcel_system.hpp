@@ -192,18 +192,28 @@ class ParcelSystem {
   std::size_t active_count() const { return active_count_ < size() ? active_count_ : size(); }
 
   // ---- Decomposition over x-slabs of MPI ranks (issue 12, docs/parallel.md) ----
-  /// From the next neighbour rebuild on, this rank owns the parcels whose neighbour-cell
-  /// column lies between the cuts (x of the boundaries between ranks 0|1, 1|2, ...; a cut is
-  /// rounded to the nearest cell face) and holds ghost copies of the others' parcels within
-  /// contact reach of its own. Every rank must hold every parcel when this is called (each
-  /// builds the same layer) and keeps its own at the first rebuild. The results are bitwise
-  /// those of one rank: every loop runs in the one-rank parcel order (`order_key`), the
-  /// rebuild, sort and sub-step decisions are collective, and ghost states are refreshed
-  /// every sub-step. Parcels change owner at rebuilds, with their contact history.
-  /// Not for periodic x. `comm` must outlive this system.
+  /// Splits the parcels over the ranks: this rank keeps those whose neighbour-cell column
+  /// lies between the cuts (x of the boundaries between ranks 0|1, 1|2, ...; a cut is rounded
+  /// to the nearest cell face) and ghost copies of the others' parcels within contact reach
+  /// of its columns (plus the ghost margin) and of every listed partner of its own. Every
+  /// rank must hold the same table when this is called (each builds the same layer, or reads
+  /// the same checkpoint); a system between two rebuilds keeps its lists. The results are
+  /// bitwise those of one rank: every loop runs in the one-rank parcel order (`order_key`),
+  /// the rebuild, sort and sub-step decisions are collective, and ghost states are
+  /// refreshed every sub-step. Parcels change owner at rebuilds, with their contact
+  /// history. Not for periodic x. `comm` must outlive this system.
   void set_decomposition(const Communicator& comm, std::vector<double> cuts);
   /// New cuts, applied at the next rebuild (the parcels move then).
   void set_cuts(std::vector<double> cuts);
+  /// Ghosts also within this distance (m) beyond the contact reach, from the next rebuild:
+  /// what the coupling's stencils need around a cut.
+  void set_ghost_margin(double margin) { ghost_margin_ = margin; }
+  /// Collective: the ghosts take their owners' values of these attached columns now (the
+  /// coupling's samples and exchange sums, which the owners compute).
+  void refresh_ghost_columns(const std::vector<ParcelColumn>& columns);
+  /// Collective in decomposed runs: the lowest-numbered rank's non-empty text ("" when none),
+  /// so that a failure one rank finds stops every rank with the same message.
+  std::string first_failure(const std::string& local) const;
   bool decomposed() const { return comm_ != nullptr; }
   /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
@@ -285,11 +295,19 @@ class ParcelSystem {
   /// the table in order-key order and the carried history in old_offset_/old_partner_id_/
   /// old_delta_. Returns whether there was a list before (on every rank alike).
   bool redistribute();
+  /// set_decomposition's split of a table every rank holds alike.
+  void split_replicated();
+  /// Each rank's first cell column (first_column_) from the cuts.
+  void update_first_columns();
+  /// Collective: how many cell columns beyond a rank's own its ghosts reach.
+  int ghost_reach_columns() const;
   /// After the rebuild's sort: the exchange lists follow the parcels, and a permuting sort
   /// gives the owned parcels their new order keys and sends them to the ghosts.
   void after_distributed_sort(bool permuted);
   /// Every sub-step: the owners' positions, velocities and spins to their ghosts.
   void refresh_ghost_kinematics();
+  /// The owners' values of these per-parcel arrays to their ghosts (one message per neighbour).
+  void refresh_ghosts(const std::vector<std::vector<double>*>& columns);
   /// new table row k = old row source[k], for every per-parcel array a rebuild keeps.
   void reorder_parcels(const std::vector<std::int32_t>& source);
   /// Sorts the table by order key; returns the rows' old indices in their new order.
@@ -378,7 +396,7 @@ class ParcelSystem {
   const Communicator* comm_ = nullptr;
   std::vector<double> cuts_;
   std::vector<int> first_column_;    ///< of each rank's cell columns, plus the end
-  bool replicated_ = false;          ///< every rank still holds every parcel
+  double ghost_margin_ = 0.0;        ///< m, ghosts beyond the contact reach (set_ghost_margin)
   std::vector<std::uint8_t> ghost_;  ///< per parcel: 1 = another rank's copy
   std::vector<std::vector<std::int32_t>> send_ghosts_;  ///< per rank: owned parcels it copies
   std::vector<std::vector<std::int32_t>> recv_ghosts_;  ///< per rank: its ghosts here, same order

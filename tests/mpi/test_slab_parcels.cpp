@@ -4,6 +4,7 @@
 // parcel order, every neighbour slot and its tangential history, the wall history).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "mpi/mpi_test_main.hpp"
+#include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/parallel/communicator.hpp"
 
@@ -207,6 +209,109 @@ TEST(SlabParcels, ARankWithoutParcelsTakesPart) {
   run(s, kSteps, moves);
   std::string report;
   EXPECT_EQ(differences_from_one_rank(s, kSteps, moves, report), 0) << report;
+}
+
+TEST(SlabParcels, ASystemSplitBetweenRebuildsContinuesBitwise) {
+  // A checkpoint's restart on two ranks: every rank holds the one-rank system after 700
+  // steps (lists, histories, skins), splits it and continues.
+  constexpr int kAfter = 1500;
+  ParcelSystem s(box_config());
+  add_scene(s);
+  run(s, 700);
+  int before = 700;  // on to a step that leaves no rebuild pending: the lists are current
+  const double dt = s.stable_time_step();
+  while (s.internals().needs_rebuild) {
+    s.step(dt);
+    ++before;
+  }
+  s.set_decomposition(world(), {kCut});
+  EXPECT_LT(s.owned_count(), s.size());  // ghosts from the start
+  run(s, kAfter);
+  std::string report;
+  EXPECT_EQ(differences_from_one_rank(s, before + kAfter, {}, report), 0) << report;
+}
+
+// The reference layer of the DEM benchmark cut to 40 mm (6,000 parcels: the loops run as
+// parallel regions) with 1 m/s random velocities, split at 20 mm.
+DemConfig layer_config() {
+  DemConfig c = box_config(0.04);
+  c.contact.k_n = 5e4;
+  c.contact.k_t = 2.0 / 7.0 * c.contact.k_n;
+  c.contact.damping = 1e-4;
+  c.wall_contact = c.contact;
+  c.gravity_y = 0.0;
+  c.domain.y_max = 0.002;
+  c.domain.y_min = 0.0;
+  c.layer.x_min = 0.0;
+  c.layer.x_max = 0.04;
+  c.layer.y_min = 0.0;
+  c.layer.y_max = 0.002;
+  c.layer.volume_fraction = 0.589;
+  c.real_per_parcel = 1.0;
+  return c;
+}
+
+void add_layer(ParcelSystem& s) {
+  ParcelSystem made = make_layer_system(layer_config());
+  unsigned state = 7u;
+  for (std::size_t i = 0; i < made.size(); ++i) {
+    state = state * 1103515245u + 12345u;
+    const double a = 6.283185307179586 * static_cast<double>((state >> 8) & 0xffff) / 65536.0;
+    s.add_parcel(parcel(made.x[i], made.y[i], std::cos(a), std::sin(a)));
+  }
+}
+
+TEST(SlabParcels, AThousandsStrongLayerWithGhostColumnsMatchesOneRank) {
+  constexpr int kSteps = 400;
+  ParcelSystem s(layer_config());
+  add_layer(s);
+  ASSERT_GT(s.size(), kParallelMinimum);
+  const ParcelColumn tag = s.attach_column({"tag", "1", false, false});
+  s.set_ghost_margin(3e-4);
+  s.set_decomposition(world(), {0.02});
+  const double dt = s.stable_time_step();
+  for (int k = 0; k < kSteps; ++k) s.step(dt);
+  // A column the owners fill reaches the ghosts.
+  std::vector<double>& t = s.column(tag);
+  for (std::size_t i = 0; i < s.size(); ++i) t[i] = s.is_ghost(i) ? -1.0 : 1.5 * s.id[i];
+  s.refresh_ghost_columns({tag});
+  std::size_t ghosts = 0, wrong = 0;
+  double farthest = 0.0;  // of the ghosts from the cut
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!s.is_ghost(i)) continue;
+    ++ghosts;
+    wrong += t[i] != 1.5 * s.id[i] ? 1 : 0;
+    farthest = std::max(farthest, std::abs(s.x[i] - 0.02));
+  }
+  EXPECT_GT(ghosts, 0u);
+  EXPECT_EQ(wrong, 0u);
+  // The margin widens the ghost band beyond the contact reach (0.2-0.3 mm here without it).
+  EXPECT_GT(farthest, 4.5e-4) << farthest;
+  std::vector<double> mine;
+  s.pack_owned(mine);
+  std::vector<std::vector<double>> pieces;
+  world().gather(mine, pieces);
+  if (world().is_root()) {
+    ParcelSystem gathered(layer_config());
+    gathered.attach_column({"tag", "1", false, false});
+    gathered.assign_packed(pieces);
+    ParcelSystem serial(layer_config());
+    add_layer(serial);
+    for (int k = 0; k < kSteps; ++k) serial.step(dt);
+    ASSERT_EQ(gathered.size(), serial.size());
+    EXPECT_TRUE(same_bits(gathered.x, serial.x));
+    EXPECT_TRUE(same_bits(gathered.vy, serial.vy));
+    EXPECT_TRUE(same_bits(gathered.omega, serial.omega));
+    EXPECT_TRUE(same_bits(gathered.nbr_delta, serial.nbr_delta));
+  }
+}
+
+TEST(SlabParcels, AFailureOnOneRankIsEveryRanksMessage) {
+  ParcelSystem s(box_config());
+  add_scene(s);
+  s.set_decomposition(world(), {kCut});
+  const std::string local = world().rank() == 1 ? "parcel id 7: velocity not finite" : "";
+  EXPECT_EQ(s.first_failure(local), "parcel id 7: velocity not finite");
 }
 
 }  // namespace
