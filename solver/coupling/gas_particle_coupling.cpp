@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -61,13 +62,14 @@ class GasParticleCoupling::GasProperties {
 
 namespace {
 
-void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1) {
-  // Zero-gradient ghost values so that interpolation next to the boundary sees the edge cell.
+void copy_edge_to_ghosts(const Grid2D& g, Field2D& f, int j0, int j1, bool left = true, bool right = true) {
+  // Zero-gradient ghost values so that interpolation next to the boundary sees the edge cell
+  // (at the domain's own ends: a slab's cut columns come from its neighbour).
   const int ng = g.ghosts();
   for (int j = std::max(j0, 0); j < std::min(j1, g.ny()); ++j) {
     for (int k = 1; k <= ng; ++k) {
-      f(-k, j) = f(0, j);
-      f(g.nx() - 1 + k, j) = f(g.nx() - 1, j);
+      if (left) f(-k, j) = f(0, j);
+      if (right) f(g.nx() - 1 + k, j) = f(g.nx() - 1, j);
     }
   }
   for (int i = -ng; i < g.nx() + ng; ++i) {
@@ -117,6 +119,24 @@ void GasParticleCoupling::restore_carried_state(const CarriedState& s) {
 
 GasParticleCoupling::~GasParticleCoupling() = default;
 
+void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHalo& halo) {
+  whole_ = &whole;
+  first_column_ = first_column;
+  halo_ = &halo;
+  skip_resting_ = false;
+  if (cfg_.two_way) {
+    relief_drag_ = Field2D(grid_);
+    relief_heat_ = Field2D(grid_);
+  }
+}
+
+void GasParticleCoupling::fill_ghosts(std::span<Field2D* const> fields, int j0, int j1) {
+  const bool left = halo_ == nullptr || halo_->owns_left_boundary();
+  const bool right = halo_ == nullptr || halo_->owns_right_boundary();
+  for (Field2D* f : fields) copy_edge_to_ghosts(grid_, *f, j0, j1, left, right);
+  if (halo_ != nullptr) halo_->exchange_columns(fields);
+}
+
 bool GasParticleCoupling::needs_vorticity() const { return cfg_.magnus || cfg_.rotation_torque; }
 
 std::vector<std::string> GasParticleCoupling::model_descriptions() const {
@@ -133,6 +153,12 @@ void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j
   for (std::size_t i = 0; i < n; ++i) {
     ymin = std::min(ymin, y[i]);
     ymax = std::max(ymax, y[i]);
+  }
+  // On several ranks the rows of all parcels: the rows the sources are written in are then
+  // the one-rank run's (a cell without parcels there gets -0, as there).
+  if (parcels.decomposed()) {
+    ymin = -parcels.max_over_ranks(-ymin);
+    ymax = parcels.max_over_ranks(ymax);
   }
   // Two rows of margin: the interpolation quad and the 3-point derivative stencils.
   j0 = std::max(0, grid_.y().locate(ymin) - 2);
@@ -158,8 +184,16 @@ void GasParticleCoupling::update_stencils(const ParcelSystem& parcels, std::size
 #pragma omp parallel for schedule(static) if (end >= kParallelParcels)
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t k0 = b * kBlock;
-    deposit_stencils(grid_, parcels.x.data() + k0, parcels.y.data() + k0, w, stencils_.data() + k0,
-                     std::min(kBlock, end - k0));
+    const std::size_t count = std::min(kBlock, end - k0);
+    deposit_stencils(whole_ != nullptr ? *whole_ : grid_, parcels.x.data() + k0, parcels.y.data() + k0, w,
+                     stencils_.data() + k0, count);
+    // On a slab: the whole grid's columns as the slab's (the neighbour's cells fall outside
+    // [0, nx) and are skipped by the deposits).
+    if (whole_ != nullptr) {
+      for (std::size_t k = k0; k < k0 + count; ++k) {
+        for (int m = 0; m < stencils_[k].count; ++m) stencils_[k].i[static_cast<std::size_t>(m)] -= first_column_;
+      }
+    }
   }
   stencil_dem_steps_ = parcels.steps();
   stencil_permutations_ = parcels.data_permutations();
@@ -229,7 +263,8 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
     const double volume = n_real[k] * particle_volume_;  // eq. (12), per metre of depth
     alpha_p_(i, j) += d.fraction[static_cast<std::size_t>(m)] * volume / grid_.area(i, j);
   });
-  copy_edge_to_ghosts(grid_, alpha_p_, 0, clear_to);
+  Field2D* const deposited[] = {&alpha_p_};
+  fill_ghosts(deposited, 0, clear_to);
 }
 
 void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
@@ -339,12 +374,37 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   } else {
     i1 = 0;
   }
-  derivatives_near_parcels(g, j0, j1, i1);
-  if (needs_vorticity()) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
-  if (cfg_.pressure_force) {
-    copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
-    copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
+  if (halo_ == nullptr) {
+    derivatives_near_parcels(g, j0, j1, i1);
+    if (needs_vorticity()) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
+    if (cfg_.pressure_force) {
+      copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
+      copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
+    }
+  } else {
+    // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
+    // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
+    std::vector<Field2D*> made;
+    if (needs_vorticity()) made.push_back(&vorticity_);
+    if (cfg_.pressure_force) {
+      made.push_back(&dpdx_);
+      made.push_back(&dpdy_);
+    }
+    const int nx = grid_.nx();
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelParcels)
+    for (int j = 0; j < grid_.ny(); ++j) {
+      if (needs_vorticity()) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
+      if (cfg_.pressure_force) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
+    }
+    if (!made.empty()) fill_ghosts(made, 0, grid_.ny());
+    // Ghosts are sampled inside the slab (their samples are their owners', refreshed later).
+    sample_x_.assign(ps.x.begin(), ps.x.begin() + static_cast<std::ptrdiff_t>(active));
+    const double lo = grid_.x().center(0), hi = grid_.x().center(grid_.nx() - 1);
+    for (std::size_t k = 0; k < active; ++k) {
+      if (ps.is_ghost(k)) sample_x_[k] = std::clamp(sample_x_[k], lo, hi);
+    }
   }
+  const double* x_sampled = halo_ != nullptr ? sample_x_.data() : ps.x.data();
   const std::size_t n = active;
   double* gu = ps.column(col_.gas_u).data();
   double* gv = ps.column(col_.gas_v).data();
@@ -373,8 +433,9 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
     std::array<SubstepCoefficients, kBatch> out{};
     const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
     // The batch's stencils, then each field at all of them (a vector loop per field).
-    InterpolationBatch<kBatch> quads(grid_);
-    quads.push_points(ps.x.data() + k0, ps.y.data() + k0, count, cfg_.interpolation);
+    InterpolationBatch<kBatch> quads =
+        whole_ != nullptr ? InterpolationBatch<kBatch>(*whole_, grid_, first_column_) : InterpolationBatch<kBatch>(grid_);
+    quads.push_points(x_sampled + k0, ps.y.data() + k0, count, cfg_.interpolation);
     enum Sampled { kRho, kU, kV, kP, kT, kAlphaP, kVorticity, kDpdx, kDpdy, kFields };
     alignas(64) double value[kFields][kBatch];
     const Field2D* fields[kFields] = {g.rho, g.u, g.v, g.p, g.T, &alpha_p_, vort ? &vorticity_ : nullptr,
@@ -484,9 +545,30 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
       r.heat = 1.0 / (1.0 + dt * r.heat * (1.0 / (m_gas * cv_gas) + 1.0 / r.heat_capacity));
     }
   }
+  if (halo_ != nullptr) {
+    // A parcel at the cut reads the neighbour's factors too.
+    for (int j = 0; j < j1; ++j) {
+      for (int i = 0; i < grid_.nx(); ++i) {
+        relief_drag_(i, j) = relief_[grid_.index(i, j)].drag;
+        relief_heat_(i, j) = relief_[grid_.index(i, j)].heat;
+      }
+    }
+    Field2D* const factors[] = {&relief_drag_, &relief_heat_};
+    fill_ghosts(factors, 0, j1);
+    const int ng = grid_.ghosts();
+    for (int j = 0; j < j1; ++j) {
+      for (int k = 1; k <= ng; ++k) {
+        for (const int i : {-k, grid_.nx() - 1 + k}) {
+          relief_[grid_.index(i, j)].drag = relief_drag_(i, j);
+          relief_[grid_.index(i, j)].heat = relief_heat_(i, j);
+        }
+      }
+    }
+  }
   const std::size_t n = active;
 #pragma omp parallel for schedule(static) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
+    if (ps.is_ghost(k)) continue;  // its owner's (a ghost's stencil may leave the slab)
     const DepositStencil& st = stencils_[k];
     double drag_relief = 0.0, heat_relief = 0.0;
     for (int m = 0; m < st.count; ++m) {
@@ -506,21 +588,27 @@ void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
   std::size_t first_bad = n;
 #pragma omp parallel for schedule(static) reduction(min : first_bad) if (n >= kParallelParcels)
   for (std::size_t k = 0; k < n; ++k) {
+    if (ps.is_ghost(k)) continue;  // its owner checks it
     const bool ok = std::isfinite(ps.x[k]) && std::isfinite(ps.y[k]) && std::isfinite(ps.vx[k]) &&
                     std::isfinite(ps.vy[k]) && std::isfinite(ps.omega[k]) && ps.temperature[k] > 0.0 &&
                     std::isfinite(ps.temperature[k]);
     if (!ok) first_bad = std::min(first_bad, k);
   }
-  if (first_bad == n) return;
-  const std::size_t k = first_bad;
+  std::string local;
+  if (first_bad != n) {
+    const std::size_t k = first_bad;
   const char* bad = !std::isfinite(ps.x[k]) || !std::isfinite(ps.y[k])    ? "position"
                     : !std::isfinite(ps.vx[k]) || !std::isfinite(ps.vy[k]) ? "velocity"
                     : !std::isfinite(ps.omega[k])                          ? "angular velocity"
                                                                            : "temperature";
-  std::ostringstream m;
-  m << "parcel id " << ps.id[k] << ": " << bad << " not finite (x = " << ps.x[k] << " m, y = " << ps.y[k]
-    << " m, vx = " << ps.vx[k] << " m/s, vy = " << ps.vy[k] << " m/s, T = " << ps.temperature[k] << " K)";
-  throw NumericalFailure(m.str());
+    std::ostringstream m;
+    m << "parcel id " << ps.id[k] << ": " << bad << " not finite (x = " << ps.x[k] << " m, y = " << ps.y[k]
+      << " m, vx = " << ps.vx[k] << " m/s, vy = " << ps.vy[k] << " m/s, T = " << ps.temperature[k] << " K)";
+    local = m.str();
+  }
+  // On several ranks every rank stops with the same message.
+  const std::string failure = ps.first_failure(local);
+  if (!failure.empty()) throw NumericalFailure(failure);
 }
 
 void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& ps, double dt) {
@@ -704,10 +792,16 @@ void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double 
   }
   if (cfg_.two_way) {
     const ScopedTimer t(timings_.relief);
+    // The relief sums every parcel's sampled coefficients, ghosts' included (their owners').
+    if (parcels.decomposed()) parcels.refresh_ghost_columns({col_.drag_raw, col_.heat_raw});
     stiff_exchange_relief(gas, parcels, dt, active);
   }
   last_substeps_ = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);
+  // The deposit sums every parcel's exchange, ghosts' included.
+  if (cfg_.two_way && parcels.decomposed()) {
+    parcels.refresh_ghost_columns({col_.impulse_x, col_.impulse_y, col_.work, col_.heat});
+  }
   check_parcels(parcels);
   deposit_exchange(gas, parcels, dt);
 }

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_config.hpp"
+#include "solver/gas/gas_halo.hpp"
 #include "solver/gas/gas_solver.hpp"
 
 namespace dustlift {
@@ -50,6 +52,15 @@ class GasParticleCoupling {
   /// two-way coupling, gives the gas its porosity (the primitive state stays the initial one).
   void initialize(GasSolver& gas, ParcelSystem& parcels);
 
+  /// On an MPI rank (issue 12, docs/parallel.md): this coupling's grid is the rank's slab of
+  /// `whole`, starting at its column `first_column`; the parcels are split over the ranks
+  /// (ParcelSystem::set_decomposition) and `halo` fills the slab's ghost columns. Stencils
+  /// are then made on the whole grid (a slab would clamp them at its cut), deposits go to the
+  /// slab's own cells, the fields the parcels read are exchanged at the cuts, and resting
+  /// parcels are not skipped (skipping changes no bit; it is not split yet). Call before
+  /// initialize(); `whole` and `halo` must outlive this coupling.
+  void set_slab(const Grid2D& whole, int first_column, GasHalo& halo);
+
   /// Steps 1-3 above for a CFD step dt. Throws NumericalFailure naming the parcel and
   /// variable if a parcel state becomes non-finite.
   void advance(GasSolver& gas, ParcelSystem& parcels, double dt);
@@ -64,7 +75,7 @@ class GasParticleCoupling {
   };
   const Timings& timings() const { return timings_; }
   /// Skip parcels resting exactly (see plan_active_parcels); on by default.
-  void set_skip_resting(bool on) { skip_resting_ = on; }
+  void set_skip_resting(bool on) { skip_resting_ = on && halo_ == nullptr; }
   /// Parcels stepped in the last CFD step (the others rested exactly).
   std::size_t last_active_parcels() const { return last_active_; }
   /// Deposited particle volume fraction (eq. 12), before the cap.
@@ -147,7 +158,16 @@ class GasParticleCoupling {
   void derivatives_near_parcels(const GasPrimitives& gas, int j0, int j1, int i1);
   void row_range(const ParcelSystem& parcels, int& j0, int& j1) const;
 
+  /// The ghost columns of these fields at the cuts from the neighbours (a slab; else nothing),
+  /// after the domain ends' and the ghost rows' copies.
+  void fill_ghosts(std::span<Field2D* const> fields, int j0, int j1);
+
   Grid2D grid_;
+  const Grid2D* whole_ = nullptr;  ///< the grid stencils are located on (grid_ unless a slab)
+  int first_column_ = 0;           ///< of the slab in the whole grid
+  GasHalo* halo_ = nullptr;
+  Field2D relief_drag_, relief_heat_;  ///< a slab's relief factors, exchanged at the cuts
+  std::vector<double> sample_x_;       ///< a slab's parcel x for sampling (ghosts kept inside)
   CouplingConfig cfg_;
   GasConfig gas_cfg_;
   DemConfig dem_cfg_;

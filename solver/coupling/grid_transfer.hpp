@@ -114,7 +114,11 @@ inline InterpolationStencil interpolation_stencil(const Grid2D& g, double x, dou
 template <std::size_t N>
 class InterpolationBatch {
  public:
-  explicit InterpolationBatch(const Grid2D& g) : grid_(&g), row_(g.stride()) {}
+  explicit InterpolationBatch(const Grid2D& g) : grid_(&g), storage_(&g), row_(g.stride()) {}
+  /// Stencils located on grid `g` (the whole grid) for fields stored on `storage`, a slab of
+  /// it whose column 0 is g's column `first_column` (an MPI rank's, ghosts included).
+  InterpolationBatch(const Grid2D& g, const Grid2D& storage, int first_column)
+      : grid_(&g), storage_(&storage), row_(storage.stride()), shift_(first_column) {}
   std::size_t size() const { return count_; }
   void clear() { count_ = 0; }
   void push(const InterpolationStencil& st) { set(count_++, st); }
@@ -122,7 +126,7 @@ class InterpolationBatch {
   /// as interpolation_stencil, made in one vector loop.
   void push_points(const double* __restrict x, const double* __restrict y, std::size_t n, InterpolationRule rule) {
     const AxisView ax = grid_->x().view(), ay = grid_->y().view();
-    const std::int32_t ng = grid_->ghosts(), row = row_;
+    const std::int32_t ng = grid_->ghosts(), row = row_, shift = shift_;
     const std::size_t q0 = count_;
     std::array<unsigned char, N> exact{};
     std::int32_t* __restrict first = first_.data();
@@ -138,7 +142,7 @@ class InterpolationBatch {
       const bool ex = detail::bracket_centres_bounded(ax, x[q], i, s);
       const bool ey = detail::bracket_centres_bounded(ay, y[q], j, t);
       exact[q] = static_cast<unsigned char>(ex & ey);
-      first[q0 + q] = (j + ng) * row + (i + ng);
+      first[q0 + q] = (j + ng) * row + (i - shift + ng);
       detail::interpolation_weights(s, t, bilinear, w0[q0 + q], w1[q0 + q], w2[q0 + q], w3[q0 + q]);
     }
     count_ += n;
@@ -159,14 +163,16 @@ class InterpolationBatch {
 
  private:
   void set(std::size_t q, const InterpolationStencil& st) {
-    first_[q] = static_cast<std::int32_t>(grid_->index(st.i, st.j));
+    first_[q] = static_cast<std::int32_t>(storage_->index(st.i - shift_, st.j));
     w0_[q] = st.weight[0];
     w1_[q] = st.weight[1];
     w2_[q] = st.weight[2];
     w3_[q] = st.weight[3];
   }
   const Grid2D* grid_;
+  const Grid2D* storage_;
   std::int32_t row_;
+  std::int32_t shift_ = 0;
   std::size_t count_ = 0;
   alignas(64) std::array<std::int32_t, N> first_{};
   alignas(64) std::array<double, N> w0_{}, w1_{}, w2_{}, w3_{};

@@ -6,7 +6,8 @@
 // reach is "shared". Phase A: every chunk adds, in parcel order, all its contributions to
 // cells outside the shared columns (each such cell hears from one chunk only). Phase B: the
 // contributions to the shared columns, serially in parcel order. Each cell's sum is then
-// added up in parcel order, as in the serial pass.
+// added up in parcel order, as in the serial pass. Entries outside columns [0, nx) are
+// skipped: on an MPI rank's slab they are the neighbour's cells, which it sums itself.
 #include <omp.h>
 
 #include <algorithm>
@@ -38,8 +39,10 @@ class ParallelDeposit {
       for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
         const DepositStencil& d = stencils[k];
         for (int m = 0; m < d.count; ++m) {
-          lo = std::min(lo, d.i[static_cast<std::size_t>(m)]);
-          hi = std::max(hi, d.i[static_cast<std::size_t>(m)]);
+          const int i = d.i[static_cast<std::size_t>(m)];
+          if (i < 0 || i >= nx) continue;
+          lo = std::min(lo, i);
+          hi = std::max(hi, i);
         }
       }
       lo_[static_cast<std::size_t>(c)] = lo;
@@ -51,6 +54,7 @@ class ParallelDeposit {
       }
     }
     threads_ = threads;
+    nx_ = nx;
     // The parcels that reach a shared column, in parcel order (chunk by chunk).
     deferred_by_chunk_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
@@ -67,7 +71,8 @@ class ParallelDeposit {
     }
   }
 
-  bool shared(int i) const { return reach_count_[static_cast<std::size_t>(i)] > 1; }
+  bool inside(int i) const { return i >= 0 && i < nx_; }
+  bool shared(int i) const { return inside(i) && reach_count_[static_cast<std::size_t>(i)] > 1; }
 
   /// Calls add(k, m) for every stencil entry m of every parcel k, in the two phases above.
   template <class Add>
@@ -77,7 +82,8 @@ class ParallelDeposit {
       for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
         const DepositStencil& d = stencils[k];
         for (int m = 0; m < d.count; ++m) {
-          if (!shared(d.i[static_cast<std::size_t>(m)])) add(k, m);
+          const int i = d.i[static_cast<std::size_t>(m)];
+          if (inside(i) && !shared(i)) add(k, m);
         }
       }
     }
@@ -95,6 +101,7 @@ class ParallelDeposit {
 
  private:
   int threads_ = 1;
+  int nx_ = 0;
   std::vector<std::size_t> chunk_start_;
   std::vector<int> reach_count_, lo_, hi_;
   std::vector<std::vector<std::size_t>> deferred_by_chunk_;

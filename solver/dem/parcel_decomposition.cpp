@@ -538,6 +538,10 @@ void ParcelSystem::refresh_ghost_columns(const std::vector<ParcelColumn>& column
   refresh_ghosts(arrays);
 }
 
+double ParcelSystem::max_over_ranks(double value) const {
+  return comm_ != nullptr ? -comm_->min(-value) : value;
+}
+
 std::string ParcelSystem::first_failure(const std::string& local) const {
   return comm_ != nullptr ? comm_->first_nonempty(local) : local;
 }

@@ -214,6 +214,8 @@ class ParcelSystem {
   /// Collective in decomposed runs: the lowest-numbered rank's non-empty text ("" when none),
   /// so that a failure one rank finds stops every rank with the same message.
   std::string first_failure(const std::string& local) const;
+  /// Collective in decomposed runs: the largest value over the ranks (the value otherwise).
+  double max_over_ranks(double value) const;
   bool decomposed() const { return comm_ != nullptr; }
   /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }

@@ -47,10 +47,6 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
     grid_ = whole_grid_;
     gas_ = std::make_unique<GasSolver>(grid_, gas_config);
   } else {
-    if (scene_.particles.enabled) {
-      throw SceneError(scene_.source_file + ": [particles] on " + std::to_string(comm_->size()) +
-                       " MPI ranks: the decomposition runs gas-only scenes so far (issue 12); run it on one rank");
-    }
     if (scene_.run.rest_tolerance > 0.0) {
       // The rest references are each slab's own: exact skipping does not depend on them, a
       // tolerance would (docs/parallel.md).
@@ -66,8 +62,17 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
   }
   gas_->initialize(scene_.initial);
   if (scene_.particles.enabled) {
+    // On several ranks every rank makes the whole layer and keeps its part (and ghosts).
     parcels_ = std::make_unique<ParcelSystem>(make_layer_system(scene_.particles));
     coupling_ = std::make_unique<GasParticleCoupling>(grid_, scene_.coupling, scene_.gas, scene_.particles);
+    if (decomposed_) {
+      std::vector<double> cuts;
+      for (int q = 1; q < comm_->size(); ++q) cuts.push_back(whole_grid_.x().face(layout_.bounds[static_cast<std::size_t>(q)]));
+      // Ghosts also as far as a deposit square reaches beyond the cut.
+      parcels_->set_ghost_margin(std::max(scene_.coupling.influence_width, scene_.particles.parcel_diameter));
+      parcels_->set_decomposition(*comm_, cuts);
+      coupling_->set_slab(whole_grid_, layout_.first_column(), *halo_);
+    }
     coupling_->set_skip_resting(scene_.run.skip_at_rest);
     coupling_->initialize(*gas_, *parcels_);
   }
@@ -344,7 +349,8 @@ double Simulation::advance(double dt_max) {
   }
   time_ += dt;
   ++step_;
-  if (decomposed_ && scene_.run.rebalance_steps > 0 && step_ % scene_.run.rebalance_steps == 0) rebalance();
+  // The parcels' cuts do not follow the gas's yet: with particles the cuts stay.
+  if (decomposed_ && !parcels_ && scene_.run.rebalance_steps > 0 && step_ % scene_.run.rebalance_steps == 0) rebalance();
   return dt;
 }
 
