@@ -92,13 +92,6 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     problem = comm->first_nonempty(problem);
     if (!problem.empty()) throw SceneError(problem);
   }
-  if (comm != nullptr && comm->size() > 1 && scene.particles.enabled) {
-    // The coupled step runs on slabs (tests/mpi/test_slab_coupled.cpp), but the parcels'
-    // outputs and checkpoints do not gather yet: a clear refusal, not a run without them.
-    throw SceneError(scene.source_file + ": [particles] on " + std::to_string(comm->size()) +
-                     " MPI ranks: the parcels' outputs and checkpoints do not run on several ranks yet "
-                     "(issue 12); run it on one rank");
-  }
   Simulation sim(scene, comm);  // validates the whole setup before anything is written
   sim.set_provenance({code_version(), options.command_line});
   if (root && options.extra_observers) {

@@ -103,6 +103,9 @@ class GasParticleCoupling {
     double rest_p = 0.0, rest_T = 0.0;
   };
   CarriedState carried_state() const { return {alpha_p_.raw(), rows_touched_, rest_p_, rest_T_}; }
+  int rows_touched() const { return rows_touched_; }
+  double rest_pressure() const { return rest_p_; }
+  double rest_temperature() const { return rest_T_; }
   /// Throws std::invalid_argument when the field size or row count does not fit the grid.
   void restore_carried_state(const CarriedState& s);
 

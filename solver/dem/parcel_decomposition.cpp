@@ -192,6 +192,16 @@ void ParcelSystem::split_replicated() {
   }
 }
 
+void ParcelSystem::drop_decomposition() {
+  comm_ = nullptr;
+  cuts_.clear();
+  first_column_.clear();
+  order_key.clear();
+  ghost_.clear();
+  send_ghosts_.clear();
+  recv_ghosts_.clear();
+}
+
 void ParcelSystem::set_cuts(std::vector<double> cuts) {
   if (comm_ == nullptr || cuts.size() + 1 != static_cast<std::size_t>(comm_->size())) {
     throw std::invalid_argument("ParcelSystem::set_cuts: one cut between each two ranks");
@@ -546,9 +556,9 @@ std::string ParcelSystem::first_failure(const std::string& local) const {
   return comm_ != nullptr ? comm_->first_nonempty(local) : local;
 }
 
-void ParcelSystem::pack_owned(std::vector<double>& out) const {
+void ParcelSystem::pack_owned(std::vector<double>& out, bool with_history) const {
   for (std::size_t i = 0; i < size(); ++i) {
-    if (!is_ghost(i)) pack_parcel(i, true, out);
+    if (!is_ghost(i)) pack_parcel(i, with_history, out);
   }
 }
 

@@ -217,6 +217,9 @@ class ParcelSystem {
   /// Collective in decomposed runs: the largest value over the ranks (the value otherwise).
   double max_over_ranks(double value) const;
   bool decomposed() const { return comm_ != nullptr; }
+  /// Back to a one-rank system's bookkeeping (the table is left as it is): a restart first
+  /// takes the whole checkpointed system into a copy of this one, then splits it again.
+  void drop_decomposition();
   /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
   /// Parcels this rank owns (size() in a one-rank run).
@@ -224,7 +227,9 @@ class ParcelSystem {
   /// Appends every owned parcel's full state (all columns, wall history and its contact
   /// history as partner ids and elongations) to `out`, in parcel order: what moves with a
   /// parcel to another rank, and what a checkpoint gathers.
-  void pack_owned(std::vector<double>& out) const;
+  /// Without the history (`with_history` false) the packed parcels carry no contact
+  /// history (an observer's view: cheaper to gather and to assign).
+  void pack_owned(std::vector<double>& out, bool with_history = true) const;
   /// A one-rank system from packed parcels (pack_owned of every rank, any order): sorted by
   /// order key, with each parcel's contact history as its neighbour list, so that it
   /// continues as the decomposed run would (checkpoints, tests). The attached columns must

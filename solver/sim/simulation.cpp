@@ -47,6 +47,10 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
     grid_ = whole_grid_;
     gas_ = std::make_unique<GasSolver>(grid_, gas_config);
   } else {
+    if (scene_.particles.enabled && layout_.periodic_x) {
+      throw SceneError(scene_.source_file + ": key 'boundary.left' = \"periodic\" with [particles] needs one MPI rank "
+                       "(a periodic channel's parcels are not split over ranks yet)");
+    }
     if (scene_.run.rest_tolerance > 0.0) {
       // The rest references are each slab's own: exact skipping does not depend on them, a
       // tolerance would (docs/parallel.md).
@@ -69,10 +73,12 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
       std::vector<double> cuts;
       for (int q = 1; q < comm_->size(); ++q) cuts.push_back(whole_grid_.x().face(layout_.bounds[static_cast<std::size_t>(q)]));
       // Ghosts also as far as a deposit square reaches beyond the cut.
+      total_parcels_ = parcels_->size();
       parcels_->set_ghost_margin(std::max(scene_.coupling.influence_width, scene_.particles.parcel_diameter));
       parcels_->set_decomposition(*comm_, cuts);
       coupling_->set_slab(whole_grid_, layout_.first_column(), *halo_);
     }
+    if (!decomposed_) total_parcels_ = parcels_->size();
     coupling_->set_skip_resting(scene_.run.skip_at_rest);
     coupling_->initialize(*gas_, *parcels_);
   }
@@ -182,9 +188,38 @@ bool Simulation::rebalance() {
   return true;
 }
 
+void Simulation::gather_parcels(bool with_lists) const {
+  if (!decomposed_ || !parcels_) return;
+  std::vector<double> mine;
+  parcels_->pack_owned(mine, with_lists);
+  std::vector<std::vector<double>> pieces;
+  comm_->gather(mine, pieces);
+  const int rows = static_cast<int>(-comm_->min(-static_cast<double>(coupling_->rows_touched())));
+  if (!comm_->is_root()) return;
+  if (!whole_parcels_) {
+    whole_parcels_ = std::make_unique<ParcelSystem>(scene_.particles);
+    for (std::size_t k = 0; k < parcels_->attached_count(); ++k) whole_parcels_->attach_column(parcels_->attached_spec(k));
+  }
+  whole_parcels_->assign_packed(pieces);
+  whole_rows_touched_ = rows;
+  if (!with_lists) return;
+  // The run's counters and decisions are every rank's alike.
+  ParcelInternals in = whole_parcels_->internals();
+  const ParcelInternals here = parcels_->internals();
+  in.time = here.time;
+  in.steps = here.steps;
+  in.rebuilds = here.rebuilds;
+  in.needs_rebuild = here.needs_rebuild;
+  in.gravity_x = here.gravity_x;
+  in.gravity_y = here.gravity_y;
+  whole_parcels_->restore_internals(in);
+}
+
 void Simulation::gather_gas(bool with_sources) const {
   if (!decomposed_) return;
-  const std::vector<Field2D*> fields = gas_state_fields(*gas_, with_sources);
+  std::vector<Field2D*> fields = gas_state_fields(*gas_, with_sources);
+  // alpha_p goes with the gas (read only: pack_slab copies it).
+  if (coupling_) fields.push_back(const_cast<Field2D*>(&coupling_->alpha_p()));
   // One message per rank: the fields' slab parts one after another.
   std::vector<double> piece;
   for (const Field2D* f : fields) {
@@ -193,8 +228,13 @@ void Simulation::gather_gas(bool with_sources) const {
   }
   std::vector<std::vector<double>> pieces;
   comm_->gather(piece, pieces);
+  gather_parcels(with_sources);
   if (!comm_->is_root()) return;
-  const std::vector<Field2D*> targets = gas_state_fields(*whole_gas_, with_sources);
+  std::vector<Field2D*> targets = gas_state_fields(*whole_gas_, with_sources);
+  if (coupling_) {
+    if (!whole_alpha_p_) whole_alpha_p_ = std::make_unique<Field2D>(whole_grid_);
+    targets.push_back(whole_alpha_p_.get());
+  }
   for (int r = 0; r < comm_->size(); ++r) {
     const SlabLayout of_r = layout_.of_rank(r);
     const std::size_t part = static_cast<std::size_t>(of_r.stored_end(kGhostLayers) - of_r.stored_begin(kGhostLayers)) *
@@ -221,9 +261,10 @@ StateView Simulation::view(const std::string& output_dir) const {
   v.grid = whole ? &whole_grid_ : &grid_;
   v.gas = whole ? whole_gas_.get() : gas_.get();
   v.primitives = v.gas->primitives();
-  v.parcels = parcels_.get();
+  // Rank 0 of a decomposed run shows the gathered parcels (the column handles are the same).
+  v.parcels = whole && whole_parcels_ ? whole_parcels_.get() : parcels_.get();
   v.coupling = coupling_.get();
-  v.alpha_p = coupling_ ? &coupling_->alpha_p() : nullptr;
+  v.alpha_p = whole && whole_alpha_p_ ? whole_alpha_p_.get() : coupling_ ? &coupling_->alpha_p() : nullptr;
   v.time = time_;
   v.step = step_;
   v.output_dir = output_dir;
@@ -295,13 +336,27 @@ std::string Simulation::work_summary() const {
     const long long messages = comm_->sum(retired_halo_messages_ + halo_->messages_sent());
     s << "; halo exchange per rank and step: " << static_cast<double>(doubles) * 8.0 / comm_->size() / steps
       << " bytes in " << static_cast<double>(messages) / comm_->size() / steps << " messages";
+    if (parcels_) {
+      // Ghost refreshes every sub-step, migrations and ghost copies at rebuilds, the
+      // coupling's refreshes; counted since the start of the run.
+      const ParcelSystem::DecompositionCounters& c = parcels_->decomposition_counters();
+      const long long all_steps = std::max<long long>(step_, 1);
+      s << "; parcel exchange per rank and step: "
+        << static_cast<double>(comm_->sum(c.doubles_sent)) * 8.0 / comm_->size() / all_steps << " bytes in "
+        << static_cast<double>(comm_->sum(c.messages)) / comm_->size() / all_steps << " messages, "
+        << comm_->sum(c.migrated) << " parcels handed over";
+    }
   }
   if (parcels_) {
     const long long substeps = parcels_->steps() - first_dem_steps_;
     const long long stepped = parcels_->parcel_substeps() - first_parcel_substeps_;
-    s << "; DEM " << substeps << " sub-steps of " << parcels_->size() << " parcels, " << stepped
+    // On several ranks summed over the ranks, ghost copies included (they are integrated,
+    // then overwritten by their owners' states).
+    const long long stepped_all = decomposed_ ? comm_->sum(stepped) : stepped;
+    const double parcels = static_cast<double>(total_parcels_);
+    s << "; DEM " << substeps << " sub-steps of " << total_parcels_ << " parcels, " << stepped_all
       << " parcel-sub-steps ("
-      << (substeps > 0 ? 100.0 * static_cast<double>(stepped) / (static_cast<double>(substeps) * parcels_->size()) : 0.0)
+      << (substeps > 0 ? 100.0 * static_cast<double>(stepped_all) / (static_cast<double>(substeps) * parcels) : 0.0)
       << " %), " << parcels_->neighbour_rebuilds() - first_rebuilds_ << " neighbour rebuilds";
   }
   s.precision(3);
@@ -317,7 +372,8 @@ std::string Simulation::work_summary() const {
   if (decomposed_) {
     s << ", moving slab cuts " << timings_.balance << " s";
     // Per rank: the gas time, and the part of it spent in (or waiting at) the halo exchange.
-    const double mine[2] = {timings_.gas, retired_halo_seconds_ + halo_->seconds()};
+    const double mine[3] = {timings_.gas, retired_halo_seconds_ + halo_->seconds(),
+                            parcels_ ? parcels_->decomposition_counters().seconds : 0.0};
     std::vector<std::vector<double>> all;
     comm_->gather(mine, all);
     if (comm_->is_root()) {
@@ -326,6 +382,11 @@ std::string Simulation::work_summary() const {
       s << " s, of which in the halo exchange";
       for (const auto& r : all) s << " " << r[1];
       s << " s";
+      if (parcels_) {
+        s << "; in the parcel exchange";
+        for (const auto& r : all) s << " " << r[2];
+        s << " s";
+      }
     }
   }
   return s.str();

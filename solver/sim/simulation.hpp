@@ -146,6 +146,15 @@ class Simulation {
   long long cell_updates() const;           ///< this rank's, over all its slab solvers
   void build_slab_gas();
   mutable std::unique_ptr<GasSolver> whole_gas_;  ///< rank 0 of a decomposed run: the gathered gas
+  /// Rank 0 of a decomposed run with particles: the gathered parcels (the one-rank system),
+  /// alpha_p and the coupling's rows (gather_gas gathers them too).
+  mutable std::unique_ptr<ParcelSystem> whole_parcels_;
+  mutable std::unique_ptr<Field2D> whole_alpha_p_;
+  mutable int whole_rows_touched_ = 0;
+  std::size_t total_parcels_ = 0;  ///< parcels in the whole run (every rank's own)
+  /// with_lists: the contact history and the DEM's own state too (a checkpoint); without,
+  /// what the observers read.
+  void gather_parcels(bool with_lists) const;
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles

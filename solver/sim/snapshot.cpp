@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "solver/parallel/slab_decomposition.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/time_targets.hpp"
 
@@ -68,7 +69,8 @@ Snapshot Simulation::snapshot() const {
   }
   if (!parcels_) return s;
 
-  const ParcelSystem& p = *parcels_;
+  // A decomposed run writes the gathered parcels (gather_gas above): the one-rank system.
+  const ParcelSystem& p = decomposed_ ? *whole_parcels_ : *parcels_;
   for (const auto& [name, v] : parcel_doubles(p)) s.f64["parcels/" + name] = *v;
   s.i32["parcels/id"] = p.id;
   s.i32["parcels/nbr_offset"] = p.nbr_offset;
@@ -89,10 +91,9 @@ Snapshot Simulation::snapshot() const {
   for (std::size_t k = 0; k < p.attached_count(); ++k) {
     if (p.attached_spec(k).checkpointed) s.f64["parcels/attached_" + p.attached_spec(k).name] = p.attached(k);
   }
-  const GasParticleCoupling::CarriedState c = coupling_->carried_state();
-  s.f64["coupling/alpha_p"] = c.alpha_p;
-  s.i64["coupling/rows_touched"] = {c.rows_touched};
-  s.f64["coupling/rest_reference"] = {c.rest_p, c.rest_T};
+  s.f64["coupling/alpha_p"] = decomposed_ ? whole_alpha_p_->raw() : coupling_->alpha_p().raw();
+  s.i64["coupling/rows_touched"] = {decomposed_ ? whole_rows_touched_ : coupling_->rows_touched()};
+  s.f64["coupling/rest_reference"] = {coupling_->rest_pressure(), coupling_->rest_temperature()};
   return s;
 }
 
@@ -139,8 +140,15 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
 
   if (parcels_) {
     ParcelSystem& p = *parcels_;
-    const std::size_t n = p.size();
+    // A decomposed run reads the whole system on every rank and splits it again below.
+    const std::size_t n = decomposed_ ? total_parcels_ : p.size();
     ParcelSystem restored = p;  // validated on the copy, then swapped in
+    if (decomposed_) {
+      restored.drop_decomposition();
+      // Columns the checkpoint does not hold are made anew within each step: sized only.
+      for (std::size_t k = 0; k < restored.attached_count(); ++k) restored.attached(k).assign(n, 0.0);
+      restored.nbr_offset.clear();
+    }
     for (const auto& [name, v] : parcel_doubles(restored)) {
       const std::size_t expected = name == "nbr_delta" ? 0 : name == "wall_delta" ? n * kWallCount : n;
       *v = snapshot_array(s.f64, "parcels/" + name, expected);
@@ -196,6 +204,14 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
     }
     GasParticleCoupling::CarriedState c;
     c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);
+    if (decomposed_) {
+      std::vector<double> slab;
+      extract_slab(c.alpha_p, whole_grid_, layout_, slab);
+      c.alpha_p.swap(slab);
+      std::vector<double> cuts;
+      for (int q = 1; q < comm_->size(); ++q) cuts.push_back(whole_grid_.x().face(layout_.bounds[static_cast<std::size_t>(q)]));
+      restored.set_decomposition(*comm_, cuts);
+    }
     c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
     if (has_attached) {
       const auto& ref = snapshot_array(s.f64, "coupling/rest_reference", 2);
