@@ -7,14 +7,16 @@
 # run.log's `done:` line), the halo volume per rank and step from B's `work:` line, and the
 # loopback timings of bench_mpi_halo_exchange. Results are bitwise the same in A, B and C
 # (checked on the last round's checkpoints when python3-h5py is present).
-#   bash bench/mpi_ranks.sh [BUILD_DIR] [END] [REPS]
-# Defaults: build/release, 0.2e-3 s (about 1 min per round), 3 rounds.
+#   bash bench/mpi_ranks.sh [BUILD_DIR] [END] [REPS] [SCENE]
+# Defaults: build/release, 0.2e-3 s (about 1 min per round), 3 rounds, the paper grid without
+# dust; SCENE = cases/paper/vertical_shock.toml times the paper scene with its dust (the
+# work line then splits the time into gas, coupling, DEM and the observers' gather).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$here/build/release}
 end=${2:-0.2e-3}
 reps=${3:-3}
-scene=$here/cases/paper/vertical_shock_gas.toml
+scene=${4:-$here/cases/paper/vertical_shock_gas.toml}
 work=$(mktemp -d -t dustlift-mpi-ranks.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
@@ -36,12 +38,13 @@ done
 a=$(awk '$1 == "A" {print $2}' "$work/times" | median)
 b=$(awk '$1 == "B" {print $2}' "$work/times" | median)
 c=$(awk '$1 == "C" {print $2}' "$work/times" | median)
-echo "paper grid, gas only, to $end s; medians of $reps (s):"
+echo "$(basename "$scene") to $end s; medians of $reps (s):"
 echo "  A 1 rank x 2 threads: $a   (all: $(awk '$1 == "A" {printf "%s ", $2}' "$work/times"))"
 echo "  B 2 ranks x 1 thread: $b   (all: $(awk '$1 == "B" {printf "%s ", $2}' "$work/times"))"
 echo "  C 1 rank x 1 thread:  $c   (all: $(awk '$1 == "C" {printf "%s ", $2}' "$work/times"))"
 awk -v a="$a" -v b="$b" -v c="$c" 'BEGIN {printf "  A/B %.3f   speed-up over one thread: OpenMP %.2fx, MPI %.2fx\n", a / b, c / a, c / b}'
-grep '^work:' "$work/B/run.log" | sed 's/^/  B /'
+grep -E '^(work|time)' "$work/A/run.log" | sed 's/^/  A /'
+grep -E '^(work|time)' "$work/B/run.log" | sed 's/^/  B /'
 if /usr/bin/python3 -c 'import h5py' 2> /dev/null; then
   /usr/bin/python3 - "$work" << 'PY'
 import sys, h5py, numpy as np

@@ -56,6 +56,7 @@ class BandForceObserver final : public Observer {
     if (options_.bands.empty()) throw std::invalid_argument("BandForceObserver: no band");
   }
   bool reads_step(const StateView&) const override { return options_.sample_every_step; }
+  bool reads_band_parcels_only() const override { return true; }
   void on_step(const StateView& view) override {
     if (options_.sample_every_step) sample(view);
   }

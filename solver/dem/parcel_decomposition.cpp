@@ -556,9 +556,10 @@ std::string ParcelSystem::first_failure(const std::string& local) const {
   return comm_ != nullptr ? comm_->first_nonempty(local) : local;
 }
 
-void ParcelSystem::pack_owned(std::vector<double>& out, bool with_history) const {
+void ParcelSystem::pack_owned(std::vector<double>& out, bool with_history,
+                              const std::function<bool(std::size_t)>& keep) const {
   for (std::size_t i = 0; i < size(); ++i) {
-    if (!is_ghost(i)) pack_parcel(i, with_history, out);
+    if (!is_ghost(i) && (!keep || keep(i))) pack_parcel(i, with_history, out);
   }
 }
 

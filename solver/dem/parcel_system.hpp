@@ -229,7 +229,9 @@ class ParcelSystem {
   /// parcel to another rank, and what a checkpoint gathers.
   /// Without the history (`with_history` false) the packed parcels carry no contact
   /// history (an observer's view: cheaper to gather and to assign).
-  void pack_owned(std::vector<double>& out, bool with_history = true) const;
+  /// `keep`, when given, picks the parcels (by index) to pack.
+  void pack_owned(std::vector<double>& out, bool with_history = true,
+                  const std::function<bool(std::size_t)>& keep = {}) const;
   /// A one-rank system from packed parcels (pack_owned of every rank, any order): sorted by
   /// order key, with each parcel's contact history as its neighbour list, so that it
   /// continues as the decomposed run would (checkpoints, tests). The attached columns must

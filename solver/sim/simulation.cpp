@@ -188,10 +188,20 @@ bool Simulation::rebalance() {
   return true;
 }
 
-void Simulation::gather_parcels(bool with_lists) const {
+void Simulation::gather_parcels(bool with_lists, bool band_only) const {
   if (!decomposed_ || !parcels_) return;
   std::vector<double> mine;
-  parcels_->pack_owned(mine, with_lists);
+  const ParcelSystem& p = *parcels_;
+  const auto in_a_band = [&](std::size_t i) {
+    for (const BandConfig& b : scene_.output.bands) {
+      if (p.x_initial[i] >= b.x_min && p.x_initial[i] <= b.x_max && p.y_initial[i] >= b.y_min &&
+          p.y_initial[i] <= b.y_max) {
+        return true;
+      }
+    }
+    return false;
+  };
+  parcels_->pack_owned(mine, with_lists, band_only ? std::function<bool(std::size_t)>(in_a_band) : nullptr);
   std::vector<std::vector<double>> pieces;
   comm_->gather(mine, pieces);
   const int rows = static_cast<int>(-comm_->min(-static_cast<double>(coupling_->rows_touched())));
@@ -215,7 +225,7 @@ void Simulation::gather_parcels(bool with_lists) const {
   whole_parcels_->restore_internals(in);
 }
 
-void Simulation::gather_gas(bool with_sources) const {
+void Simulation::gather_gas(bool with_sources, bool band_parcels_only) const {
   if (!decomposed_) return;
   std::vector<Field2D*> fields = gas_state_fields(*gas_, with_sources);
   // alpha_p goes with the gas (read only: pack_slab copies it).
@@ -228,7 +238,7 @@ void Simulation::gather_gas(bool with_sources) const {
   }
   std::vector<std::vector<double>> pieces;
   comm_->gather(piece, pieces);
-  gather_parcels(with_sources);
+  gather_parcels(with_sources, band_parcels_only && !with_sources);
   if (!comm_->is_root()) return;
   std::vector<Field2D*> targets = gas_state_fields(*whole_gas_, with_sources);
   if (coupling_) {
@@ -476,10 +486,14 @@ RunEnd Simulation::run(const std::string& output_dir) {
       const ScopedTimer t(timings_.observers);
       const bool output_due = interval > 0.0 && time_ >= multiple_time(next_output_, interval);
       if (gather) {
-        bool read = output_due;
+        bool read = output_due, all_parcels = output_due;
         const StateView now = view(output_dir);
-        for (auto& o : observers_) read = read || o->reads_step(now);
-        if (comm_->any(read)) gather_gas(false);
+        for (auto& o : observers_) {
+          if (!o->reads_step(now)) continue;
+          read = true;
+          all_parcels = all_parcels || !o->reads_band_parcels_only();
+        }
+        if (comm_->any(read)) gather_gas(false, !comm_->any(all_parcels));
       }
       const StateView v = view(output_dir);
       for (auto& o : observers_) o->on_step(v);

@@ -106,14 +106,19 @@ TEST(MpiCli, ADustSceneOnTwoRanksWritesWhatOneRankWritesAndRestartsEitherWay) {
   GTEST_SKIP() << "built without MPI";
 #else
   // The quickstart on a 30 mm channel over a 15 mm layer (~2,200 parcels), cut inside the
-  // layer; to 40 us (the shock past the cut), outputs (VTK, series, checkpoints) every 20 us.
+  // layer; to 40 us (the shock past the cut), outputs (VTK, series, checkpoints) every 20 us,
+  // and the paper's two force bands moved onto this layer.
   const auto dir = fresh_dir("mpi_cli_dust");
   const std::string scene = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml";
   const std::string common =
       " --threads 1 --set run.end_time=4e-5 --set output.interval=2e-5 --set grid.x.start=-0.010"
       " --set grid.x.end=0.020 --set grid.x.cells_below=10 --set grid.y.end=0.008"
-      " --set grid.y.uniform_end=0.006 --set grid.y.cells_above=4 --set "
-      "particles.layer.x_max=0.015";
+      " --set grid.y.uniform_end=0.006 --set grid.y.cells_above=4 --set particles.layer.x_max=0.015"
+      // Force bands across the cut (x = 7.5 mm): sampled every step from the band parcels
+      // alone, which is all rank 0 gathers then.
+      " --set 'output.bands=[{name=\"surface\", x_min=0.004, x_max=0.011, y_min=-0.0001, "
+      "y_max=0.0},"
+      " {name=\"middle\", x_min=0.004, x_max=0.011, y_min=-0.0011, y_max=-0.0009}]'";
   auto r = run_command(std::string(DUSTLIFT_BINARY) + " run " + scene + " --out " +
                        (dir / "one").string() + common);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -143,6 +148,12 @@ TEST(MpiCli, ADustSceneOnTwoRanksWritesWhatOneRankWritesAndRestartsEitherWay) {
     }
   }
   EXPECT_GE(files, 3);
+  // The surface band holds parcels: its first row samples some (tau, samples, ...).
+  std::istringstream band(read_all(dir / "two" / "series" / "forces_surface.csv"));
+  std::string header, row;
+  std::getline(band, header);
+  std::getline(band, row);
+  EXPECT_GT(std::stoi(row.substr(row.find(',') + 1)), 100) << row;
   // Stopped after 60 steps on 2 ranks, continued on 1; stopped on 1, continued on 2.
   for (const auto& [first, then] : {std::pair{mpirun2(), std::string(DUSTLIFT_BINARY)},
                                     std::pair{std::string(DUSTLIFT_BINARY), mpirun2()}}) {
