@@ -56,7 +56,8 @@ class BandForceObserver final : public Observer {
     if (options_.bands.empty()) throw std::invalid_argument("BandForceObserver: no band");
   }
   bool reads_step(const StateView&) const override { return options_.sample_every_step; }
-  bool reads_band_parcels_only() const override { return true; }
+  // The band parcels, and the pressure for the shock's arrival.
+  unsigned step_reads() const override { return kReadsPressure | kReadsBandParcels; }
   void on_step(const StateView& view) override {
     if (options_.sample_every_step) sample(view);
   }

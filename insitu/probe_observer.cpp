@@ -23,6 +23,7 @@ class ProbeObserver final : public Observer {
   bool reads_step(const StateView& view) const override {
     return options_.interval > 0.0 ? view.time >= multiple_time(next_sample_, options_.interval) : true;
   }
+  unsigned step_reads() const override { return kReadsGas | kReadsAlphaP; }
   void on_step(const StateView& view) override {
     if (reads_step(view)) sample(view);
   }

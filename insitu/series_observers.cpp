@@ -97,6 +97,7 @@ class ShockPositionObserver final : public Observer {
       : options_(options), table_("shock_position", {{"time", "s"}, {"x", "m"}}) {}
 
   bool reads_step(const StateView&) const override { return options_.every_step; }
+  unsigned step_reads() const override { return kReadsPressure; }
   void on_step(const StateView& view) override {
     if (options_.every_step) sample(view);
   }

@@ -52,10 +52,18 @@ class Observer {
   /// the fields may not be): a decomposed run gathers the whole grid on rank 0 only for a
   /// step some observer reads. An observer that overrides on_step must say when it reads.
   virtual bool reads_step(const StateView&) const { return false; }
-  /// Whether on_step reads, of the parcels, only those that started in the scene's force
-  /// bands (output.bands): at a step no other observer reads, a decomposed run then gathers
-  /// only those (the band filters sample every step; the whole table would cost far more).
-  virtual bool reads_band_parcels_only() const { return false; }
+  /// What on_step reads at a step it reads (StepRead bits): a decomposed run gathers on
+  /// rank 0 only that (filters that sample every step would otherwise gather the whole grid
+  /// and parcel table every step). Default: everything.
+  enum StepRead : unsigned {
+    kReadsPressure = 1u,      ///< the gas pressure
+    kReadsAlphaP = 2u,        ///< the deposited alpha_p
+    kReadsGas = 4u,           ///< every gas field
+    kReadsBandParcels = 8u,   ///< the parcels that started in the scene's output bands
+    kReadsParcels = 16u,      ///< every parcel
+    kReadsEverything = 31u
+  };
+  virtual unsigned step_reads() const { return kReadsEverything; }
   /// Called once after the last step of a run that reached its end (or step limit); not
   /// after an interruption (the next segment continues the same series).
   virtual void on_finish(const StateView& view) { on_output(view); }

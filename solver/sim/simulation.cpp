@@ -225,11 +225,20 @@ void Simulation::gather_parcels(bool with_lists, bool band_only) const {
   whole_parcels_->restore_internals(in);
 }
 
-void Simulation::gather_gas(bool with_sources, bool band_parcels_only) const {
+void Simulation::gather_gas(bool with_sources, unsigned reads) const {
   if (!decomposed_) return;
-  std::vector<Field2D*> fields = gas_state_fields(*gas_, with_sources);
+  if (with_sources) reads = Observer::kReadsEverything;
+  const bool all_gas = (reads & Observer::kReadsGas) != 0;
+  const bool alpha = coupling_ && (reads & (Observer::kReadsGas | Observer::kReadsAlphaP)) != 0;
+  constexpr int kPressure = 3;  // primitive_field: rho, u, v, p, T
+  std::vector<Field2D*> fields;
+  if (all_gas) {
+    fields = gas_state_fields(*gas_, with_sources);
+  } else if ((reads & Observer::kReadsPressure) != 0) {
+    fields.push_back(&gas_->primitive_field(kPressure));
+  }
   // alpha_p goes with the gas (read only: pack_slab copies it).
-  if (coupling_) fields.push_back(const_cast<Field2D*>(&coupling_->alpha_p()));
+  if (alpha) fields.push_back(const_cast<Field2D*>(&coupling_->alpha_p()));
   // One message per rank: the fields' slab parts one after another.
   std::vector<double> piece;
   for (const Field2D* f : fields) {
@@ -238,10 +247,17 @@ void Simulation::gather_gas(bool with_sources, bool band_parcels_only) const {
   }
   std::vector<std::vector<double>> pieces;
   comm_->gather(piece, pieces);
-  gather_parcels(with_sources, band_parcels_only && !with_sources);
+  if ((reads & (Observer::kReadsParcels | Observer::kReadsBandParcels)) != 0) {
+    gather_parcels(with_sources, (reads & Observer::kReadsParcels) == 0);
+  }
   if (!comm_->is_root()) return;
-  std::vector<Field2D*> targets = gas_state_fields(*whole_gas_, with_sources);
-  if (coupling_) {
+  std::vector<Field2D*> targets;
+  if (all_gas) {
+    targets = gas_state_fields(*whole_gas_, with_sources);
+  } else if ((reads & Observer::kReadsPressure) != 0) {
+    targets.push_back(&whole_gas_->primitive_field(kPressure));
+  }
+  if (alpha) {
     if (!whole_alpha_p_) whole_alpha_p_ = std::make_unique<Field2D>(whole_grid_);
     targets.push_back(whole_alpha_p_.get());
   }
@@ -486,14 +502,19 @@ RunEnd Simulation::run(const std::string& output_dir) {
       const ScopedTimer t(timings_.observers);
       const bool output_due = interval > 0.0 && time_ >= multiple_time(next_output_, interval);
       if (gather) {
-        bool read = output_due, all_parcels = output_due;
+        bool read = output_due;
+        unsigned reads = output_due ? Observer::kReadsEverything : 0u;
         const StateView now = view(output_dir);
         for (auto& o : observers_) {
           if (!o->reads_step(now)) continue;
           read = true;
-          all_parcels = all_parcels || !o->reads_band_parcels_only();
+          reads |= o->step_reads();
         }
-        if (comm_->any(read)) gather_gas(false, !comm_->any(all_parcels));
+        if (comm_->any(read)) {
+          // Observers live on rank 0 (the others' is 0): a max is rank 0's value everywhere.
+          reads = static_cast<unsigned>(-comm_->min(-static_cast<double>(reads)));
+          gather_gas(false, reads);
+        }
       }
       const StateView v = view(output_dir);
       for (auto& o : observers_) o->on_step(v);

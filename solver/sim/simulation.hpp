@@ -103,7 +103,10 @@ class Simulation {
   const SlabLayout& slab() const { return layout_; }
   /// Collective in a decomposed run: rank 0's copy of the whole grid's gas (null elsewhere,
   /// and when not decomposed) takes every rank's slab; all fields, or those observers read.
-  void gather_gas(bool with_sources, bool band_parcels_only = false) const;
+  /// What `reads` says (Observer::StepRead bits) of the gas, alpha_p and the parcels on
+  /// rank 0 of a decomposed run; everything, the parcels with their history, when
+  /// with_sources (a checkpoint).
+  void gather_gas(bool with_sources, unsigned reads = Observer::kReadsEverything) const;
   const GasSolver* whole_gas() const { return whole_gas_.get(); }
   /// Null in a gas-only scene.
   ParcelSystem* parcels() { return parcels_.get(); }
@@ -154,7 +157,7 @@ class Simulation {
   std::size_t total_parcels_ = 0;  ///< parcels in the whole run (every rank's own)
   /// with_lists: the contact history and the DEM's own state too (a checkpoint); without,
   /// what the observers read.
-  /// band_only: only the parcels that started in an output band (Observer::reads_band_parcels_only).
+  /// band_only: only the parcels that started in an output band (Observer::step_reads).
   void gather_parcels(bool with_lists, bool band_only) const;
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
