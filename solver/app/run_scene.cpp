@@ -135,9 +135,9 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     if (root) write_checkpoint(checkpoint_path, snap);
   });
   for (const auto& e : sim.enabled_effects()) log.line("  " + e);
-  if (const ParcelSystem* p = sim.parcels()) {
+  if (sim.parcels() != nullptr) {
     log.line("  " + describe_layer(scene.particles));
-    if (layer_settles(scene.particles.layer)) log.line("  " + describe_bed(*p, scene.particles.layer));
+    if (layer_settles(scene.particles.layer)) log.line("  " + sim.bed_description());
   }
   sim.set_log([&](const std::string& s) { log.line(s); });
   if (root) sim.set_progress_callback([&](const Progress& p) {

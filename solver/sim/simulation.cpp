@@ -68,6 +68,7 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
   if (scene_.particles.enabled) {
     // On several ranks every rank makes the whole layer and keeps its part (and ghosts).
     parcels_ = std::make_unique<ParcelSystem>(make_layer_system(scene_.particles));
+    if (layer_settles(scene_.particles.layer)) bed_description_ = describe_bed(*parcels_, scene_.particles.layer);
     coupling_ = std::make_unique<GasParticleCoupling>(grid_, scene_.coupling, scene_.gas, scene_.particles);
     if (decomposed_) {
       std::vector<double> cuts;

@@ -109,6 +109,9 @@ class Simulation {
   void gather_gas(bool with_sources, unsigned reads = Observer::kReadsEverything) const;
   const GasSolver* whole_gas() const { return whole_gas_.get(); }
   /// Null in a gas-only scene.
+  /// The settled bed as made (describe_bed of the whole layer, before any split over ranks);
+  /// empty unless the layer settles.
+  const std::string& bed_description() const { return bed_description_; }
   ParcelSystem* parcels() { return parcels_.get(); }
   const ParcelSystem* parcels() const { return parcels_.get(); }
   const GasParticleCoupling* coupling() const { return coupling_.get(); }
@@ -155,6 +158,7 @@ class Simulation {
   mutable std::unique_ptr<Field2D> whole_alpha_p_;
   mutable int whole_rows_touched_ = 0;
   std::size_t total_parcels_ = 0;  ///< parcels in the whole run (every rank's own)
+  std::string bed_description_;
   /// with_lists: the contact history and the DEM's own state too (a checkpoint); without,
   /// what the observers read.
   /// band_only: only the parcels that started in an output band (Observer::step_reads).
