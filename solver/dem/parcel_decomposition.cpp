@@ -325,6 +325,18 @@ std::vector<std::int32_t> ParcelSystem::sort_table_by_key() {
   return by_key;
 }
 
+void ParcelSystem::follow_rows(const std::vector<std::int32_t>& old_of_new) {
+  std::vector<std::int32_t> new_of_old(old_of_new.size());
+  for (std::size_t k = 0; k < old_of_new.size(); ++k) {
+    new_of_old[static_cast<std::size_t>(old_of_new[k])] = static_cast<std::int32_t>(k);
+  }
+  for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
+    for (auto& l : *lists) {
+      for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
+    }
+  }
+}
+
 bool ParcelSystem::redistribute() {
   const SecondsSince timer(counters_.seconds);
   const Communicator& comm = *comm_;
@@ -338,21 +350,18 @@ bool ParcelSystem::redistribute() {
 
   // 1. Owned parcels leaving this rank, packed with their history (the list is still valid).
   for (auto& b : send_buf_) b.clear();
-  {
-    for (std::size_t i = 0; i < n0; ++i) {
-      if (ghost_[i] == 0 && owner[i] != me) {
-        pack_parcel(i, had_list, send_buf_[static_cast<std::size_t>(owner[i])]);
-        ++counters_.migrated;
-        bool elongated = false;
-        for (int w = 0; w < kWallCount; ++w)
-          elongated = elongated || wall_delta[i * kWallCount + static_cast<std::size_t>(w)] != 0.0;
-        if (nbr_offset.size() == n0 + 1) {
-          for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k)
-            elongated = elongated || nbr_delta[static_cast<std::size_t>(k)] != 0.0;
-        }
-        counters_.migrated_with_history += elongated ? 1 : 0;
-      }
+  for (std::size_t i = 0; i < n0; ++i) {
+    if (ghost_[i] != 0 || owner[i] == me) continue;
+    pack_parcel(i, had_list, send_buf_[static_cast<std::size_t>(owner[i])]);
+    ++counters_.migrated;
+    bool elongated = false;
+    for (int w = 0; w < kWallCount; ++w)
+      elongated = elongated || wall_delta[i * kWallCount + static_cast<std::size_t>(w)] != 0.0;
+    if (nbr_offset.size() == n0 + 1) {
+      for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k)
+        elongated = elongated || nbr_delta[static_cast<std::size_t>(k)] != 0.0;
     }
+    counters_.migrated_with_history += elongated ? 1 : 0;
   }
   // 2. The rows that stay (owned and still ours), with their history as partner ids.
   const int reach = ghost_reach_columns();
@@ -383,22 +392,20 @@ bool ParcelSystem::redistribute() {
   }
   reorder_parcels(keep);
 
-  auto exchange_sized = [&](bool counts_known) {
-    // Sizes first when the receiver cannot know them, then the payload.
-    if (!counts_known) {
-      std::vector<std::vector<double>> sizes(static_cast<std::size_t>(ranks)),
-          got(static_cast<std::size_t>(ranks));
-      for (int q = 0; q < ranks; ++q) {
-        if (q == me) continue;
-        sizes[static_cast<std::size_t>(q)] = {
-            static_cast<double>(send_buf_[static_cast<std::size_t>(q)].size())};
-        got[static_cast<std::size_t>(q)].resize(1);
-      }
-      comm.exchange(sizes, got);
-      for (int q = 0; q < ranks; ++q) {
-        recv_buf_[static_cast<std::size_t>(q)].resize(
-            q == me ? 0 : static_cast<std::size_t>(got[static_cast<std::size_t>(q)][0]));
-      }
+  auto exchange_sized = [&] {
+    // The sizes first (the receiver cannot know them), then the payload.
+    std::vector<std::vector<double>> sizes(static_cast<std::size_t>(ranks)),
+        got(static_cast<std::size_t>(ranks));
+    for (int q = 0; q < ranks; ++q) {
+      if (q == me) continue;
+      sizes[static_cast<std::size_t>(q)] = {
+          static_cast<double>(send_buf_[static_cast<std::size_t>(q)].size())};
+      got[static_cast<std::size_t>(q)].resize(1);
+    }
+    comm.exchange(sizes, got);
+    for (int q = 0; q < ranks; ++q) {
+      recv_buf_[static_cast<std::size_t>(q)].resize(
+          q == me ? 0 : static_cast<std::size_t>(got[static_cast<std::size_t>(q)][0]));
     }
     comm.exchange(send_buf_, recv_buf_);
     for (int q = 0; q < ranks; ++q) {
@@ -407,53 +414,41 @@ bool ParcelSystem::redistribute() {
       counters_.messages += sent > 0 ? 1 : 0;
     }
   };
-
-  {
-    // 3. Take in the parcels that came to this rank.
-    exchange_sized(false);
-    const std::size_t head = packed_head(kBuiltinColumns + 2 + attached_.size());
+  // Appends the parcels of every rank's message; ghosts are listed by their sender.
+  const std::size_t head = packed_head(kBuiltinColumns + 2 + attached_.size());
+  auto take_in = [&](bool ghosts) {
     for (int q = 0; q < ranks; ++q) {
       const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
       const double* row = b.data();
       const double* end = b.data() + b.size();
       while (row < end) {
         if (row + head > end) throw std::runtime_error("ParcelSystem: a truncated parcel message");
-        row = append_packed(row, false);
+        if (ghosts)
+          recv_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(size()));
+        row = append_packed(row, ghosts);
       }
     }
-    // 4. Ghosts: this rank's parcels within reach of another rank's columns.
-    for (auto& b : send_buf_) b.clear();
-    for (std::size_t i = 0; i < size(); ++i) {
-      const int cx = cell_column(x[i]);
-      for (int q = 0; q < ranks; ++q) {
-        if (q == me || !near_rank(cx, q)) continue;
-        send_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
-        pack_parcel(i, false, send_buf_[static_cast<std::size_t>(q)]);
-        ++counters_.ghosts_sent;
-      }
-    }
-    exchange_sized(false);
+  };
+
+  // 3. Take in the parcels that came to this rank.
+  exchange_sized();
+  take_in(false);
+  // 4. Ghosts: this rank's parcels within reach of another rank's columns.
+  for (auto& b : send_buf_) b.clear();
+  for (std::size_t i = 0; i < size(); ++i) {
+    const int cx = cell_column(x[i]);
     for (int q = 0; q < ranks; ++q) {
-      const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
-      const double* row = b.data();
-      const double* end = b.data() + b.size();
-      while (row < end) {
-        recv_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(size()));
-        row = append_packed(row, true);
-      }
+      if (q == me || !near_rank(cx, q)) continue;
+      send_ghosts_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
+      pack_parcel(i, false, send_buf_[static_cast<std::size_t>(q)]);
+      ++counters_.ghosts_sent;
     }
   }
+  exchange_sized();
+  take_in(true);
   // 5. The table in the one-rank order; the exchange lists follow their rows.
-  const std::size_t n = size();
   const std::vector<std::int32_t> by_key = sort_table_by_key();
-  std::vector<std::int32_t> new_of_old(n);
-  for (std::size_t k = 0; k < n; ++k)
-    new_of_old[static_cast<std::size_t>(by_key[k])] = static_cast<std::int32_t>(k);
-  for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
-    for (auto& l : *lists) {
-      for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
-    }
-  }
+  follow_rows(by_key);
   old_offset_ = hist_offset_;
   old_partner_id_ = hist_partner_;
   old_delta_ = hist_delta_;
@@ -464,14 +459,7 @@ void ParcelSystem::after_distributed_sort(bool permuted) {
   if (!permuted) return;
   const SecondsSince timer(counters_.seconds);
   const std::size_t n = size();
-  std::vector<std::int32_t> new_of_old(n);
-  for (std::size_t k = 0; k < n; ++k)
-    new_of_old[static_cast<std::size_t>(old_index_[k])] = static_cast<std::int32_t>(k);
-  for (auto* lists : {&send_ghosts_, &recv_ghosts_}) {
-    for (auto& l : *lists) {
-      for (std::int32_t& e : l) e = new_of_old[static_cast<std::size_t>(e)];
-    }
-  }
+  follow_rows(old_index_);
   // This rank's cells follow those of the ranks before it: its parcels take the next keys.
   const Communicator& comm = *comm_;
   const double mine = static_cast<double>(owned_count());

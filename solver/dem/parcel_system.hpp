@@ -319,6 +319,8 @@ class ParcelSystem {
   void refresh_ghosts(const std::vector<std::vector<double>*>& columns);
   /// new table row k = old row source[k], for every per-parcel array a rebuild keeps.
   void reorder_parcels(const std::vector<std::int32_t>& source);
+  /// The exchange lists after a reorder (old_of_new[k]: the old index of row k).
+  void follow_rows(const std::vector<std::int32_t>& old_of_new);
   /// Sorts the table by order key; returns the rows' old indices in their new order.
   std::vector<std::int32_t> sort_table_by_key();
   void pack_parcel(std::size_t i, bool with_history, std::vector<double>& out) const;
