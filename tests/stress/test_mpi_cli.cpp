@@ -18,11 +18,15 @@ using dustlift::testing::run_command;
 namespace {
 
 #ifdef DUSTLIFT_TEST_MPIEXEC
-std::string mpirun2() {
-  // Root is allowed in CI containers; two ranks even on a busy machine.
+std::string mpirun(int ranks) {
+  // Root is allowed in CI containers; the ranks even on a busy machine.
   return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
          "OMPI_MCA_btl_vader_single_copy_mechanism=none " +
-         std::string(DUSTLIFT_TEST_MPIEXEC) + " -np 2 --oversubscribe " + DUSTLIFT_BINARY;
+         std::string(DUSTLIFT_TEST_MPIEXEC) + " -np " + std::to_string(ranks) +
+         " --oversubscribe " + DUSTLIFT_BINARY;
+}
+std::string mpirun2() {
+  return mpirun(2);
 }
 #endif
 
@@ -128,6 +132,12 @@ TEST(MpiCli, ADustSceneOnTwoRanksWritesWhatOneRankWritesAndRestartsEitherWay) {
   EXPECT_EQ(
       differing_anywhere(one, dustlift::read_checkpoint((dir / "two" / "checkpoint.h5").string())),
       "");
+  // Three ranks: the middle one has a neighbour on each side (slabs of 17, 16, 17 columns).
+  r = run_command(mpirun(3) + " run " + scene + " --out " + (dir / "three").string() + common);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(differing_anywhere(
+                one, dustlift::read_checkpoint((dir / "three" / "checkpoint.h5").string())),
+            "");
   // Every series file byte for byte, every gas and parcel file but for its provenance (the command
   // line names another folder).
   const auto without_command_line = [](std::string text) {
