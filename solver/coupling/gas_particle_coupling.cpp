@@ -130,6 +130,28 @@ void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHal
   }
 }
 
+void GasParticleCoupling::move_to_slab(const Grid2D& slab, int first_column, GasHalo& halo) {
+  grid_ = slab;
+  first_column_ = first_column;
+  halo_ = &halo;
+  alpha_p_ = Field2D(grid_);
+  alpha_g_ = Field2D(grid_, 1.0);
+  if (needs_vorticity()) vorticity_ = Field2D(grid_);
+  if (cfg_.pressure_force) {
+    dpdx_ = Field2D(grid_);
+    dpdy_ = Field2D(grid_);
+  }
+  exchange_.assign(grid_.size_with_ghosts(), ExchangeCell{});
+  relief_.assign(grid_.size_with_ghosts(), ReliefCell{});
+  if (cfg_.two_way) {
+    relief_drag_ = Field2D(grid_);
+    relief_heat_ = Field2D(grid_);
+  }
+  stencil_dem_steps_ = -1;
+  planned_parcels_ = 0;
+  deposit_columns_ = 0;
+}
+
 void GasParticleCoupling::fill_ghosts(std::span<Field2D* const> fields, int j0, int j1) {
   const bool left = halo_ == nullptr || halo_->owns_left_boundary();
   const bool right = halo_ == nullptr || halo_->owns_right_boundary();

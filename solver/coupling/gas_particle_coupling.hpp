@@ -60,6 +60,9 @@ class GasParticleCoupling {
   /// parcels are not skipped (skipping changes no bit; it is not split yet). Call before
   /// initialize(); `whole` and `halo` must outlive this coupling.
   void set_slab(const Grid2D& whole, int first_column, GasHalo& halo);
+  /// After a move of the cuts: this rank's new slab (its grid, first column and halo). The
+  /// fields start empty: restore_carried_state gives alpha_p; the rest is made each step.
+  void move_to_slab(const Grid2D& slab, int first_column, GasHalo& halo);
 
   /// Steps 1-3 above for a CFD step dt. Throws NumericalFailure naming the parcel and
   /// variable if a parcel state becomes non-finite.

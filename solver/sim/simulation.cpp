@@ -27,6 +27,20 @@ std::vector<Field2D*> gas_state_fields(GasSolver& g, bool with_sources) {
   return f;
 }
 
+/// The run's counters and decisions (time, steps, rebuilds, a pending rebuild, gravity), which
+/// every rank's parcel system has alike, onto a system assembled from packed parcels.
+void take_run_state(ParcelSystem& assembled, const ParcelSystem& here) {
+  ParcelInternals in = assembled.internals();
+  const ParcelInternals run = here.internals();
+  in.time = run.time;
+  in.steps = run.steps;
+  in.rebuilds = run.rebuilds;
+  in.needs_rebuild = run.needs_rebuild;
+  in.gravity_x = run.gravity_x;
+  in.gravity_y = run.gravity_y;
+  assembled.restore_internals(in);
+}
+
 std::string fmt_number(double v) {
   std::ostringstream s;
   s << v;
@@ -71,12 +85,10 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
     if (layer_settles(scene_.particles.layer)) bed_description_ = describe_bed(*parcels_, scene_.particles.layer);
     coupling_ = std::make_unique<GasParticleCoupling>(grid_, scene_.coupling, scene_.gas, scene_.particles);
     if (decomposed_) {
-      std::vector<double> cuts;
-      for (int q = 1; q < comm_->size(); ++q) cuts.push_back(whole_grid_.x().face(layout_.bounds[static_cast<std::size_t>(q)]));
       // Ghosts also as far as a deposit square reaches beyond the cut.
       total_parcels_ = parcels_->size();
       parcels_->set_ghost_margin(std::max(scene_.coupling.influence_width, scene_.particles.parcel_diameter));
-      parcels_->set_decomposition(*comm_, cuts);
+      parcels_->set_decomposition(*comm_, parcel_cuts());
       coupling_->set_slab(whole_grid_, layout_.first_column(), *halo_);
     }
     if (!decomposed_) total_parcels_ = parcels_->size();
@@ -109,6 +121,17 @@ bool Simulation::rebalance() {
   // of every cell for the scans that find the resting ones (an estimate; docs/parallel.md).
   std::vector<double> work(static_cast<std::size_t>(grid_.nx()), 0.05 * static_cast<double>(grid_.ny()));
   gas_->add_column_work(work);
+  if (parcels_) {
+    // A parcel costs about 2.4 cell updates a step (paper scene on 2 ranks: 5.2e-8 s per
+    // parcel-sub-step x 11.4 sub-steps against 8.2e-8 s per cell-stage x 3 stages).
+    constexpr double kParcelWeight = 2.4;
+    const ParcelSystem& p = *parcels_;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.is_ghost(i)) continue;
+      const int column = std::clamp(whole_grid_.x().locate(p.x[i]) - layout_.first_column(), 0, grid_.nx() - 1);
+      work[static_cast<std::size_t>(column)] += kParcelWeight;
+    }
+  }
   std::vector<std::vector<double>> pieces;
   comm_->gather(work, pieces);
   std::vector<double> whole_work;
@@ -127,10 +150,22 @@ bool Simulation::rebalance() {
     return most;
   };
   if (!(largest(bounds) < 0.95 * largest(layout_.bounds))) return false;
-  // The state moves exactly: every rank sends each rank the columns of its new slab that it
-  // holds now (its interior, and the ghost columns beyond a domain end), every field and row.
-  // Only ranks whose old and new slabs overlap exchange anything. The new slab's other ghost
-  // columns are its neighbours' cells: the next step's exchanges fill those that are read.
+  // The parcels and alpha_p, whole, on every rank: each splits them again at the new cuts
+  // (keeping the contact lists: the move changes no bit).
+  std::vector<double> parcels_whole, alpha_whole;
+  if (parcels_) {
+    gather_gas(true);
+    if (comm_->is_root()) {
+      whole_parcels_->pack_owned(parcels_whole);
+      alpha_whole = whole_alpha_p_->raw();
+      alpha_whole.push_back(static_cast<double>(whole_rows_touched_));
+    }
+    comm_->broadcast(parcels_whole);
+    comm_->broadcast(alpha_whole);
+  }
+  // The state moves exactly: every rank sends each rank the columns of its new slab, ghost
+  // columns included, that it holds now (its interior, and the ghost columns beyond a domain
+  // end), every field and row. Only ranks whose columns overlap exchange anything.
   const int ng = kGhostLayers;
   const auto rows = static_cast<std::size_t>(whole_grid_.ny() + 2 * ng);
   SlabLayout moved = layout_;
@@ -138,6 +173,12 @@ bool Simulation::rebalance() {
   // Whole-grid columns [first, end) a layout's rank stores.
   auto stored = [&](const SlabLayout& l) {
     return std::pair{l.first_column() + l.stored_begin(ng), l.first_column() + l.stored_end(ng)};
+  };
+  // Whole-grid columns [first, end) a layout's rank needs after the move: its stored columns
+  // and the ghost columns at its cuts, which are other ranks' cells now (the coupling samples
+  // them before the next step's exchanges fill them).
+  auto needed = [&](const SlabLayout& l) {
+    return std::pair{std::max(l.first_column() - ng, -ng), std::min(l.end_column() + ng, whole_grid_.nx() + ng)};
   };
   auto overlap = [](std::pair<int, int> a, std::pair<int, int> b) {
     return std::pair{std::max(a.first, b.first), std::min(a.second, b.second)};
@@ -148,7 +189,7 @@ bool Simulation::rebalance() {
     const std::vector<Field2D*> old_fields = gas_state_fields(*gas_, true);
     const std::pair<int, int> mine = stored(layout_);
     for (int q = 0; q < ranks; ++q) {
-      const auto [a, b] = overlap(mine, stored(moved.of_rank(q)));
+      const auto [a, b] = overlap(mine, needed(moved.of_rank(q)));
       if (a >= b) continue;
       std::vector<double>& out = send[static_cast<std::size_t>(q)];
       out.reserve(old_fields.size() * rows * static_cast<std::size_t>(b - a));
@@ -159,7 +200,7 @@ bool Simulation::rebalance() {
         }
       }
     }
-    const std::pair<int, int> wanted = stored(moved);
+    const std::pair<int, int> wanted = needed(moved);
     for (int q = 0; q < ranks; ++q) {
       const auto [a, b] = overlap(stored(layout_.of_rank(q)), wanted);
       if (a < b) receive[static_cast<std::size_t>(q)].resize(old_fields.size() * rows * static_cast<std::size_t>(b - a));
@@ -171,7 +212,7 @@ bool Simulation::rebalance() {
   build_slab_gas();
   gas_->initialize(scene_.initial);  // the inflow states, as at the start; then the state
   const std::vector<Field2D*> new_fields = gas_state_fields(*gas_, true);
-  const std::pair<int, int> wanted = stored(layout_);
+  const std::pair<int, int> wanted = needed(layout_);
   for (int q = 0; q < ranks; ++q) {
     const auto [a, b] = overlap(stored(before.of_rank(q)), wanted);
     if (a >= b) continue;
@@ -185,8 +226,30 @@ bool Simulation::rebalance() {
       }
     }
   }
+  if (parcels_) {
+    ParcelSystem split = *parcels_;
+    split.drop_decomposition();
+    split.assign_packed({parcels_whole});
+    take_run_state(split, *parcels_);
+    split.set_decomposition(*comm_, parcel_cuts());
+    *parcels_ = std::move(split);
+    coupling_->move_to_slab(grid_, layout_.first_column(), *halo_);
+    GasParticleCoupling::CarriedState c;
+    c.rows_touched = static_cast<int>(alpha_whole.back());
+    alpha_whole.pop_back();
+    extract_slab(alpha_whole, whole_grid_, layout_, c.alpha_p);
+    c.rest_p = coupling_->rest_pressure();
+    c.rest_T = coupling_->rest_temperature();
+    coupling_->restore_carried_state(c);
+  }
   ++rebalances_;
   return true;
+}
+
+std::vector<double> Simulation::parcel_cuts() const {
+  std::vector<double> cuts;
+  for (int q = 1; q < comm_->size(); ++q) cuts.push_back(whole_grid_.x().face(layout_.bounds[static_cast<std::size_t>(q)]));
+  return cuts;
 }
 
 void Simulation::gather_parcels(bool with_lists, bool band_only) const {
@@ -214,16 +277,7 @@ void Simulation::gather_parcels(bool with_lists, bool band_only) const {
   whole_parcels_->assign_packed(pieces);
   whole_rows_touched_ = rows;
   if (!with_lists) return;
-  // The run's counters and decisions are every rank's alike.
-  ParcelInternals in = whole_parcels_->internals();
-  const ParcelInternals here = parcels_->internals();
-  in.time = here.time;
-  in.steps = here.steps;
-  in.rebuilds = here.rebuilds;
-  in.needs_rebuild = here.needs_rebuild;
-  in.gravity_x = here.gravity_x;
-  in.gravity_y = here.gravity_y;
-  whole_parcels_->restore_internals(in);
+  take_run_state(*whole_parcels_, *parcels_);
 }
 
 void Simulation::gather_gas(bool with_sources, unsigned reads) const {
@@ -437,8 +491,7 @@ double Simulation::advance(double dt_max) {
   }
   time_ += dt;
   ++step_;
-  // The parcels' cuts do not follow the gas's yet: with particles the cuts stay.
-  if (decomposed_ && !parcels_ && scene_.run.rebalance_steps > 0 && step_ % scene_.run.rebalance_steps == 0) rebalance();
+  if (decomposed_ && scene_.run.rebalance_steps > 0 && step_ % scene_.run.rebalance_steps == 0) rebalance();
   return dt;
 }
 

@@ -163,6 +163,8 @@ class Simulation {
   /// what the observers read.
   /// band_only: only the parcels that started in an output band (Observer::step_reads).
   void gather_parcels(bool with_lists, bool band_only) const;
+  /// x of the slab cuts, where the parcels are split too.
+  std::vector<double> parcel_cuts() const;
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles

@@ -208,9 +208,7 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
       std::vector<double> slab;
       extract_slab(c.alpha_p, whole_grid_, layout_, slab);
       c.alpha_p.swap(slab);
-      std::vector<double> cuts;
-      for (int q = 1; q < comm_->size(); ++q) cuts.push_back(whole_grid_.x().face(layout_.bounds[static_cast<std::size_t>(q)]));
-      restored.set_decomposition(*comm_, cuts);
+      restored.set_decomposition(*comm_, parcel_cuts());
     }
     c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
     if (has_attached) {

@@ -132,6 +132,20 @@ TEST(SlabCoupled, ShockOverDustOnTwoRanksMatchesOneRankBitForBit) {
   }
 }
 
+TEST(SlabCoupled, CutsThatFollowTheWorkChangeNothing) {
+  // The cuts recomputed every 10 steps from the cells and parcels each column costs: the
+  // parcels move to their new ranks with their contact lists, alpha_p with the gas. The
+  // layer starts at 6 mm, so most parcels are right of the first cut (7.5 mm) and it moves.
+  const Scene scene = reduced_quickstart({"run.rebalance_steps=10", "particles.layer.x_min=0.006"});
+  constexpr int kSteps = 150;
+  omp_set_num_threads(1);
+  Simulation two(scene, &world());
+  advance_steps(two, kSteps);
+  EXPECT_GT(two.rebalances(), 0);
+  std::string names;
+  EXPECT_EQ(differences(scene, kSteps, two, 1, names), 0) << names;
+}
+
 }  // namespace
 }  // namespace dustlift
 
