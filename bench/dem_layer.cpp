@@ -13,13 +13,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
-#include <numbers>
 
 #include "bench/dem_reference_layer.hpp"
 #include "bench/run_benchmarks.hpp"
-#include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
-#include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
 
 using namespace dustlift;

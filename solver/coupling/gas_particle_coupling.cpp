@@ -124,6 +124,13 @@ void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHal
   first_column_ = first_column;
   halo_ = &halo;
   skip_resting_ = false;
+  // The fields a slab makes in every cell and exchanges (members: their addresses stay).
+  derived_fields_.clear();
+  if (needs_vorticity()) derived_fields_.push_back(&vorticity_);
+  if (cfg_.pressure_force) {
+    derived_fields_.push_back(&dpdx_);
+    derived_fields_.push_back(&dpdy_);
+  }
   if (cfg_.two_way) {
     relief_drag_ = Field2D(grid_);
     relief_heat_ = Field2D(grid_);
@@ -406,19 +413,13 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   } else {
     // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
     // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
-    std::vector<Field2D*> made;
-    if (needs_vorticity()) made.push_back(&vorticity_);
-    if (cfg_.pressure_force) {
-      made.push_back(&dpdx_);
-      made.push_back(&dpdy_);
-    }
     const int nx = grid_.nx();
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelParcels)
     for (int j = 0; j < grid_.ny(); ++j) {
       if (needs_vorticity()) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
       if (cfg_.pressure_force) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
     }
-    if (!made.empty()) fill_ghosts(made, 0, grid_.ny());
+    if (!derived_fields_.empty()) fill_ghosts(derived_fields_, 0, grid_.ny());
     // Ghosts are sampled inside the slab (their samples are their owners', refreshed later).
     sample_x_.assign(ps.x.begin(), ps.x.begin() + static_cast<std::ptrdiff_t>(active));
     const double lo = grid_.x().center(0), hi = grid_.x().center(grid_.nx() - 1);
@@ -815,14 +816,18 @@ void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double 
   if (cfg_.two_way) {
     const ScopedTimer t(timings_.relief);
     // The relief sums every parcel's sampled coefficients, ghosts' included (their owners').
-    if (parcels.decomposed()) parcels.refresh_ghost_columns({col_.drag_raw, col_.heat_raw});
+    if (parcels.decomposed()) {
+      const ParcelColumn sampled[] = {col_.drag_raw, col_.heat_raw};
+      parcels.refresh_ghost_columns(sampled);
+    }
     stiff_exchange_relief(gas, parcels, dt, active);
   }
   last_substeps_ = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);
   // The deposit sums every parcel's exchange, ghosts' included.
   if (cfg_.two_way && parcels.decomposed()) {
-    parcels.refresh_ghost_columns({col_.impulse_x, col_.impulse_y, col_.work, col_.heat});
+    const ParcelColumn exchanged[] = {col_.impulse_x, col_.impulse_y, col_.work, col_.heat};
+    parcels.refresh_ghost_columns(exchanged);
   }
   check_parcels(parcels);
   deposit_exchange(gas, parcels, dt);

@@ -94,7 +94,8 @@ class GasParticleCoupling {
   /// One line per active model, for `dustlift info`.
   std::vector<std::string> model_descriptions() const;
 
-  /// What one advance() leaves for the next (for checkpoints): the deposited alpha_p
+  /// What one advance() leaves for the next (checkpoints read it through alpha_p(),
+  /// rows_touched(), rest_pressure() and rest_temperature()): the deposited alpha_p
   /// (ghosts included; sampled at the start of the next step) and the rows it touched
   /// (cleared at the next deposit). Everything else is rebuilt within each step.
   /// Also the resting reference the parcels' rest counts refer to (their counts and the
@@ -105,7 +106,6 @@ class GasParticleCoupling {
     int rows_touched = 0;
     double rest_p = 0.0, rest_T = 0.0;
   };
-  CarriedState carried_state() const { return {alpha_p_.raw(), rows_touched_, rest_p_, rest_T_}; }
   int rows_touched() const { return rows_touched_; }
   double rest_pressure() const { return rest_p_; }
   double rest_temperature() const { return rest_T_; }
@@ -174,6 +174,7 @@ class GasParticleCoupling {
   GasHalo* halo_ = nullptr;
   Field2D relief_drag_, relief_heat_;  ///< a slab's relief factors, exchanged at the cuts
   std::vector<double> sample_x_;       ///< a slab's parcel x for sampling (ghosts kept inside)
+  std::vector<Field2D*> derived_fields_;  ///< a slab's vorticity and grad p, exchanged at the cuts
   CouplingConfig cfg_;
   GasConfig gas_cfg_;
   DemConfig dem_cfg_;

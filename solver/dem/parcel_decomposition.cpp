@@ -497,7 +497,7 @@ void ParcelSystem::after_distributed_sort(bool permuted) {
   }
 }
 
-void ParcelSystem::refresh_ghosts(const std::vector<std::vector<double>*>& columns) {
+void ParcelSystem::refresh_ghosts(std::span<std::vector<double>* const> columns) {
   const SecondsSince timer(counters_.seconds);
   const int ranks = comm_->size();
   const std::size_t width = columns.size();
@@ -526,14 +526,18 @@ void ParcelSystem::refresh_ghosts(const std::vector<std::vector<double>*>& colum
 }
 
 void ParcelSystem::refresh_ghost_kinematics() {
-  refresh_ghosts({&x, &y, &vx, &vy, &omega});
+  std::vector<double>* const kinematics[] = {&x, &y, &vx, &vy, &omega};
+  refresh_ghosts(kinematics);
 }
 
-void ParcelSystem::refresh_ghost_columns(const std::vector<ParcelColumn>& columns) {
+void ParcelSystem::refresh_ghost_columns(std::span<const ParcelColumn> columns) {
   if (comm_ == nullptr) return;
-  std::vector<std::vector<double>*> arrays;
-  for (const ParcelColumn c : columns) arrays.push_back(&attached_.at(c.index));
-  refresh_ghosts(arrays);
+  std::array<std::vector<double>*, 8> arrays{};
+  if (columns.size() > arrays.size()) {
+    throw std::invalid_argument("ParcelSystem::refresh_ghost_columns: at most 8 columns at once");
+  }
+  for (std::size_t k = 0; k < columns.size(); ++k) arrays[k] = &attached_.at(columns[k].index);
+  refresh_ghosts(std::span(arrays.data(), columns.size()));
 }
 
 double ParcelSystem::max_over_ranks(double value) const {

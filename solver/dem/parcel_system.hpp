@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -210,7 +211,7 @@ class ParcelSystem {
   void set_ghost_margin(double margin) { ghost_margin_ = margin; }
   /// Collective: the ghosts take their owners' values of these attached columns now (the
   /// coupling's samples and exchange sums, which the owners compute).
-  void refresh_ghost_columns(const std::vector<ParcelColumn>& columns);
+  void refresh_ghost_columns(std::span<const ParcelColumn> columns);
   /// Collective in decomposed runs: the lowest-numbered rank's non-empty text ("" when none),
   /// so that a failure one rank finds stops every rank with the same message.
   std::string first_failure(const std::string& local) const;
@@ -316,7 +317,7 @@ class ParcelSystem {
   /// Every sub-step: the owners' positions, velocities and spins to their ghosts.
   void refresh_ghost_kinematics();
   /// The owners' values of these per-parcel arrays to their ghosts (one message per neighbour).
-  void refresh_ghosts(const std::vector<std::vector<double>*>& columns);
+  void refresh_ghosts(std::span<std::vector<double>* const> columns);
   /// new table row k = old row source[k], for every per-parcel array a rebuild keeps.
   void reorder_parcels(const std::vector<std::int32_t>& source);
   /// The exchange lists after a reorder (old_of_new[k]: the old index of row k).

@@ -146,8 +146,8 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
     if (decomposed_) {
       restored.drop_decomposition();
       // Columns the checkpoint does not hold are made anew within each step: sized only.
-      for (std::size_t k = 0; k < restored.attached_count(); ++k) restored.attached(k).assign(n, 0.0);
-      restored.nbr_offset.clear();
+      for (std::size_t k = 0; k < restored.attached_count(); ++k)
+        restored.attached(k).assign(n, 0.0);
     }
     for (const auto& [name, v] : parcel_doubles(restored)) {
       const std::size_t expected = name == "nbr_delta" ? 0 : name == "wall_delta" ? n * kWallCount : n;

@@ -274,7 +274,8 @@ TEST(SlabParcels, AThousandsStrongLayerWithGhostColumnsMatchesOneRank) {
   // A column the owners fill reaches the ghosts.
   std::vector<double>& t = s.column(tag);
   for (std::size_t i = 0; i < s.size(); ++i) t[i] = s.is_ghost(i) ? -1.0 : 1.5 * s.id[i];
-  s.refresh_ghost_columns({tag});
+  const ParcelColumn refreshed[] = {tag};
+  s.refresh_ghost_columns(refreshed);
   std::size_t ghosts = 0, wrong = 0;
   double farthest = 0.0;  // of the ghosts from the cut
   for (std::size_t i = 0; i < s.size(); ++i) {
