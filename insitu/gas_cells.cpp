@@ -1,5 +1,6 @@
 #include "insitu/gas_cells.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -38,7 +39,11 @@ void GasCellArrays::check_sizes() const {
 }
 
 void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
-                      const std::function<double(int, int)>& sound_speed, GasCellArrays& out) {
+                      const std::function<double(int, int)>& sound_speed, GasCellArrays& out,
+                      int ghosts_left, int ghosts_right) {
+  if (ghosts_left < 0 || ghosts_right < 0 || ghosts_left > 1 || ghosts_right > 1 ||
+      std::max(ghosts_left, ghosts_right) > grid.ghosts())
+    throw std::invalid_argument("gather_gas_cells: ghosts_left/right must be 0 or 1");
   if (!gas.rho || !gas.u || !gas.v || !gas.p || !gas.T || !gas.alpha_g)
     throw std::invalid_argument("gather_gas_cells: a primitive field is missing");
   out.x_nodes = grid.x().interior_faces();
@@ -58,7 +63,32 @@ void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2
       out.mach[k] = std::hypot(u, v) / sound_speed(i, j);
     }
   }
-  vorticity_z(out.x_centers(), out.y_centers(), out.velocity_x, out.velocity_y, out.vorticity);
+  if (ghosts_left == 0 && ghosts_right == 0) {
+    vorticity_z(out.x_centers(), out.y_centers(), out.velocity_x, out.velocity_y, out.vorticity);
+    return;
+  }
+  // The columns widened by the ghosts (the faces beyond a cut are the whole grid's).
+  const int wide = nx + ghosts_left + ghosts_right;
+  std::vector<double> xc(static_cast<std::size_t>(wide));
+  std::vector<double> u(static_cast<std::size_t>(wide) * ny), v(u.size()), w(u.size());
+  for (int i = 0; i < wide; ++i) {
+    const int gi = i - ghosts_left;
+    xc[static_cast<std::size_t>(i)] = 0.5 * (grid.x().face(gi) + grid.x().face(gi + 1));
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < wide; ++i) {
+      const std::size_t k = static_cast<std::size_t>(i) + static_cast<std::size_t>(wide) * j;
+      u[k] = (*gas.u)(i - ghosts_left, j);
+      v[k] = (*gas.v)(i - ghosts_left, j);
+    }
+  }
+  vorticity_z(xc, out.y_centers(), u, v, w);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      out.vorticity[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * j] =
+          w[static_cast<std::size_t>(i + ghosts_left) + static_cast<std::size_t>(wide) * j];
+    }
+  }
 }
 
 }  // namespace dustlift

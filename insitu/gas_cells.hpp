@@ -37,7 +37,12 @@ struct GasCellArrays {
 /// Fills `out` from the primitive fields (interior cells) and computes alpha_p,
 /// vorticity and mach = sqrt(u^2+v^2) / sound_speed(i, j).
 /// alpha_p: the deposited particle volume fraction, or null to use 1 - alpha_g.
+/// A slab of a decomposed run reads `ghosts_left` / `ghosts_right` (0 or 1) ghost columns at
+/// its cuts, which hold its neighbours' cells, for the x-derivative of the vorticity: its
+/// edge columns then get the whole grid's centred differences (one-sided only at a domain
+/// end), so the pieces of all ranks hold the one-rank values.
 void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
-                      const std::function<double(int, int)>& sound_speed, GasCellArrays& out);
+                      const std::function<double(int, int)>& sound_speed, GasCellArrays& out,
+                      int ghosts_left = 0, int ghosts_right = 0);
 
 }  // namespace dustlift

@@ -11,8 +11,12 @@ namespace {
 
 /// A force part's columns, or none when the scene does not compute it (a column of zeros
 /// would read as a computed zero force).
-Vec2Columns force_part(bool computed, const std::vector<double>& fx, const std::vector<double>& fy) {
-  return computed ? Vec2Columns{fx, fy} : Vec2Columns{};
+Vec2Columns force_part(bool computed, const std::vector<double>& fx,
+                       const std::vector<double>& fy) {
+  return computed ? Vec2Columns{present_column(fx), present_column(fy)} : Vec2Columns{};
+}
+Vec2Columns both(const std::vector<double>& x, const std::vector<double>& y) {
+  return {present_column(x), present_column(y)};
 }
 
 /// Parcel arrays straight from the ParcelSystem (no copy): the writer reads them at outputs.
@@ -23,19 +27,23 @@ ParcelArraysView parcel_arrays_of(const StateView& v) {
   const CouplingConfig& c = v.scene->coupling;
   ParcelArraysView a;
   a.count = p.size();
-  a.position = {p.x, p.y};
-  a.id = p.id;
-  a.velocity = {p.vx, p.vy};
-  a.angular_velocity = p.omega;
-  a.temperature = p.temperature;
-  a.diameter = p.diameter;
-  a.initial_position = {p.x_initial, p.y_initial};
-  a.force_contact = {p.contact_fx, p.contact_fy};
+  // Every column present, also on a rank without parcels (present_column).
+  a.position = both(p.x, p.y);
+  static constexpr std::int32_t kNoId = 0;
+  a.id =
+      p.id.empty() ? std::span<const std::int32_t>(&kNoId, 0) : std::span<const std::int32_t>(p.id);
+  a.velocity = both(p.vx, p.vy);
+  a.angular_velocity = present_column(p.omega);
+  a.temperature = present_column(p.temperature);
+  a.diameter = present_column(p.diameter);
+  a.initial_position = both(p.x_initial, p.y_initial);
+  a.force_contact = both(p.contact_fx, p.contact_fy);
   a.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
   a.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
   a.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
   for (std::size_t k = 0; k < p.attached_count(); ++k) {
-    if (p.attached_spec(k).written) a.extra.push_back({p.attached_spec(k).name, p.attached(k)});
+    if (p.attached_spec(k).written)
+      a.extra.push_back({p.attached_spec(k).name, present_column(p.attached(k))});
   }
   return a;
 }
@@ -63,8 +71,15 @@ BandParcelsView band_arrays_of(const StateView& v) {
 }  // namespace
 
 std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
-                                                             const std::string& output_dir) {
+                                                             const std::string& output_dir,
+                                                             bool piece_writers_only) {
   std::vector<std::unique_ptr<Observer>> observers;
+  if (piece_writers_only) {
+    if (scene.output.vtk) observers.push_back(make_vtk_gas_writer());
+    if (scene.output.vtk && scene.particles.enabled)
+      observers.push_back(make_vtk_parcel_writer(parcel_arrays_of));
+    return observers;
+  }
   // Effects-off rule: without the section no Catalyst code is loaded or run.
   if (scene.insitu.catalyst.enabled) {
     observers.push_back(make_catalyst_observer(scene, output_dir, scene.particles.enabled ? parcel_arrays_of : nullptr));

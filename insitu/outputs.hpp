@@ -9,7 +9,11 @@
 
 namespace dustlift {
 
+/// The scene's outputs (VTK series, filters, series files, Catalyst). With
+/// `piece_writers_only`, just those that write pieces (Observer::writes_pieces), in the same
+/// order: what the ranks other than 0 of a decomposed run add.
 std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
-                                                             const std::string& output_dir);
+                                                             const std::string& output_dir,
+                                                             bool piece_writers_only = false);
 
 }  // namespace dustlift

@@ -9,10 +9,21 @@
 
 namespace dustlift {
 
-/// A 2-D vector stored as two columns. Empty: absent (not written / not averaged).
+/// A column of parcel values. Absent (not written / not averaged): a default span, without
+/// a data pointer. A present column of no parcel (a rank whose parcels all left) still has
+/// one: present_column gives it, so that such a piece holds the same arrays as the others.
+inline bool is_present(std::span<const double> column) {
+  return column.data() != nullptr;
+}
+inline std::span<const double> present_column(const std::vector<double>& values) {
+  static constexpr double kNoValue = 0.0;  // a data pointer for a column of no parcel
+  return values.empty() ? std::span<const double>(&kNoValue, 0) : std::span<const double>(values);
+}
+
+/// A 2-D vector stored as two columns (absent as is_present says).
 struct Vec2Columns {
   std::span<const double> x, y;
-  bool present() const { return !x.empty(); }
+  bool present() const { return is_present(x); }
 };
 
 /// A further per-parcel array, written under its name (e.g. a written column of the table).
@@ -41,5 +52,17 @@ struct ParcelArraysView {
   /// Throws std::invalid_argument when a present array is not `count` long.
   void check_sizes() const;
 };
+
+/// Storage for the rows of a ParcelArraysView that kept_rows copies (reused between calls).
+struct ParcelArraysCopy {
+  std::vector<std::vector<double>> columns;
+  std::vector<std::int32_t> id;
+};
+
+/// The rows of `all` whose flag in `drop` is 0 (a rank's own parcels, its ghost copies left
+/// out), copied into `storage` in their order, as a view with the same arrays. An empty
+/// `drop` keeps every row (still a copy).
+ParcelArraysView kept_rows(const ParcelArraysView& all, std::span<const std::uint8_t> drop,
+                           ParcelArraysCopy& storage);
 
 }  // namespace dustlift

@@ -9,8 +9,10 @@
 #include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/shock_position.hpp"
-#include "solver/core/derivatives.hpp"
+#include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
+#include "solver/core/derivatives.hpp"
+#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
 namespace {
@@ -20,32 +22,59 @@ class VtkParcelWriter final : public Observer {
   explicit VtkParcelWriter(ParcelArraysOf parcels_of) : parcels_of_(std::move(parcels_of)) {
     if (!parcels_of_) throw std::invalid_argument("VtkParcelWriter: no parcel adaptor");
   }
+  // A decomposed run: each rank writes its own parcels, rank 0 the .pvtp that joins them.
+  bool writes_pieces() const override { return true; }
+
   void on_output(const StateView& view) override {
-    if (!writer_) writer_ = std::make_unique<ParcelSeriesWriter>(view.output_dir);
-    if (writer_->files().last_time_is(view.time)) return;  // on_finish right after that output
-    writer_->write(parcels_of_(view), view.time, vtk_file_info_of(view));
+    if (!files_) files_ = make_files(view);
+    if (files_->last_time_is(view.time)) return;  // on_finish right after that output
+    if (view.piece == nullptr) {
+      write_parcels_vtp(parcels_of_(view), files_->next_path(view.time), vtk_file_info_of(view));
+      files_->commit(view.time);
+      return;
+    }
+    // The rank's table holds copies of its neighbours' parcels: those are theirs to write.
+    const ParcelArraysView all = parcels_of_(view);
+    const ParcelArraysView own = kept_rows(all, view.piece->parcel_ghosts, own_);
+    write_in_pieces(
+        *files_, *view.piece, view.time, "vtp",
+        [&](const std::string& path) { write_parcels_vtp(own, path, vtk_file_info_of(view)); },
+        // The arrays every piece holds, from this rank's table (present even with no parcel of
+        // its own).
+        [&](const std::string& path, const std::vector<std::string>& sources) {
+          write_parcels_pvtp(all, sources, path);
+        });
   }
 
   std::string state_key() const override { return "parcels_vtk"; }
   void save_state(Snapshot& s, const std::string& prefix) const override {
-    if (writer_) {
-      writer_->files().save_state(s, prefix);
+    if (files_) {
+      files_->save_state(s, prefix);
     } else {
-      ParcelSeriesWriter("").files().save_state(s, prefix);  // nothing written yet
+      VtkSeriesFiles("", "parcels", "vtp").save_state(s, prefix);  // nothing written yet
     }
   }
   void restore_state(const Snapshot& s, const std::string& prefix) override {
     restored_ = VtkSeriesFiles::read_state(s, prefix);
   }
   void on_resume(const StateView& view, const std::string& previous_output_dir) override {
-    writer_ = std::make_unique<ParcelSeriesWriter>(view.output_dir);
-    writer_->files().resume(std::move(restored_), previous_output_dir);
+    files_ = make_files(view);
+    files_->resume(std::move(restored_), previous_output_dir);
+    if (view.piece != nullptr) view.piece->comm->barrier();  // rank 0 has removed stale pieces
   }
 
  private:
+  static std::unique_ptr<VtkSeriesFiles> make_files(const StateView& view) {
+    if (view.piece != nullptr)
+      return std::make_unique<VtkSeriesFiles>(
+          piece_series_files(view.output_dir, "parcels", "vtp", *view.piece));
+    return std::make_unique<VtkSeriesFiles>(view.output_dir, "parcels", "vtp");
+  }
+
   ParcelArraysOf parcels_of_;
-  std::unique_ptr<ParcelSeriesWriter> writer_;
+  std::unique_ptr<VtkSeriesFiles> files_;
   VtkSeriesFiles::State restored_;
+  ParcelArraysCopy own_;  // reused: no reallocation once sized
 };
 
 class BandForceObserver final : public Observer {

@@ -52,10 +52,10 @@ vtkSmartPointer<vtkDoubleArray> vector_array(const char* name, std::span<const d
 
 }  // namespace
 
-vtkSmartPointer<vtkRectilinearGrid> make_gas_grid(const GasCellArrays& gas) {
+vtkSmartPointer<vtkRectilinearGrid> make_gas_grid(const GasCellArrays& gas, int first_column) {
   auto grid = vtkSmartPointer<vtkRectilinearGrid>::New();
-  grid->SetDimensions(static_cast<int>(gas.x_nodes.size()), static_cast<int>(gas.y_nodes.size()),
-                      1);
+  grid->SetExtent(first_column, first_column + static_cast<int>(gas.x_nodes.size()) - 1, 0,
+                  static_cast<int>(gas.y_nodes.size()) - 1, 0, 0);
   const double z0[1] = {0.0};
   grid->SetXCoordinates(copied_array("x", gas.x_nodes));
   grid->SetYCoordinates(copied_array("y", gas.y_nodes));
@@ -104,7 +104,7 @@ vtkSmartPointer<vtkPolyData> make_parcel_polydata(const ParcelArraysView& parcel
     if (v.present()) pd->AddArray(vector_array(name, v.x, v.y));
   };
   auto add1 = [pd](const char* name, std::span<const double> s) {
-    if (!s.empty()) pd->AddArray(wrapped_array(name, s));
+    if (is_present(s)) pd->AddArray(wrapped_array(name, s));
   };
   add2("velocity", parcels.velocity);
   add1("angular_velocity", parcels.angular_velocity);
@@ -116,7 +116,7 @@ vtkSmartPointer<vtkPolyData> make_parcel_polydata(const ParcelArraysView& parcel
   add2("force_magnus", parcels.force_magnus);
   add2("force_pressure", parcels.force_pressure);
   for (const auto& c : parcels.extra) add1(c.name.c_str(), c.values);
-  if (!parcels.id.empty()) {
+  if (parcels.id.data() != nullptr) {
     static_assert(sizeof(int) == sizeof(std::int32_t));
     vtkNew<vtkIntArray> id;
     id->SetName("id");

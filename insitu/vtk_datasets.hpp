@@ -13,8 +13,10 @@ namespace dustlift {
 
 struct VtkFileInfo;
 
-/// A rectilinear grid with the nodes of `gas` (z = 0) and no cell data.
-vtkSmartPointer<vtkRectilinearGrid> make_gas_grid(const GasCellArrays& gas);
+/// A rectilinear grid with the nodes of `gas` (z = 0) and no cell data. A piece of a
+/// decomposed run has the extent of its columns in the whole grid, starting at
+/// `first_column` (ParaView's .pvtr reader places the pieces by their extents).
+vtkSmartPointer<vtkRectilinearGrid> make_gas_grid(const GasCellArrays& gas, int first_column = 0);
 
 /// Replaces the cell data of `grid` by the arrays of `gas` (density, velocity with z = 0,
 /// pressure, temperature, mach, alpha_p, vorticity; active scalars pressure). The scalar

@@ -1,4 +1,5 @@
-// The gas writer observer: StateView -> GasCellArrays -> .vtr + gas.pvd.
+// The gas writer observer: StateView -> GasCellArrays -> .vtr + gas.pvd (a decomposed run:
+// a .vtr piece per rank and the .pvtr that joins them).
 // It calls no GasSolver member itself (the sound speed comes in as a function), so it
 // links and is tested without a gas solver; vtk_gas_observer_default.cpp binds
 // GasSolver::sound_speed.
@@ -7,7 +8,9 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
+#include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
+#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
 namespace {
@@ -18,14 +21,32 @@ class VtkGasWriter final : public Observer {
     if (!sound_speed_) throw std::invalid_argument("VtkGasWriter: no sound speed function");
   }
 
+  // A decomposed run: each rank writes its slab, rank 0 the .pvtr that joins them.
+  bool writes_pieces() const override { return true; }
+
   void on_output(const StateView& view) override {
     if (!view.grid) throw std::invalid_argument("VtkGasWriter: the state view has no grid");
-    if (!files_) files_ = std::make_unique<VtkSeriesFiles>(view.output_dir, "gas", "vtr");
+    if (!files_) files_ = make_files(view);
     if (files_->last_time_is(view.time)) return;  // on_finish right after the output of that time
-    gather_gas_cells(*view.grid, view.primitives, view.alpha_p,
-                     [&](int i, int j) { return sound_speed_(view, i, j); }, cells_);
-    write_gas_vtr(cells_, files_->next_path(view.time), vtk_file_info_of(view));
-    files_->commit(view.time);
+    const auto sound_speed = [&](int i, int j) { return sound_speed_(view, i, j); };
+    if (view.piece == nullptr) {
+      gather_gas_cells(*view.grid, view.primitives, view.alpha_p, sound_speed, cells_);
+      write_gas_vtr(cells_, files_->next_path(view.time), vtk_file_info_of(view));
+      files_->commit(view.time);
+      return;
+    }
+    const RunPiece& piece = *view.piece;
+    write_in_pieces(
+        *files_, piece, view.time, "vtr",
+        [&](const std::string& path) {
+          gather_gas_cells(*view.grid, view.primitives, view.alpha_p, sound_speed, cells_,
+                           piece.neighbour_left() ? 1 : 0, piece.neighbour_right() ? 1 : 0);
+          write_gas_vtr(cells_, path, vtk_file_info_of(view),
+                        piece.column_bounds[static_cast<std::size_t>(piece.rank)]);
+        },
+        [&](const std::string& path, const std::vector<std::string>& sources) {
+          write_gas_pvtr(cells_, piece.column_bounds, sources, path);
+        });
   }
 
   std::string state_key() const override { return "gas_vtk"; }
@@ -40,11 +61,19 @@ class VtkGasWriter final : public Observer {
     restored_ = VtkSeriesFiles::read_state(s, prefix);
   }
   void on_resume(const StateView& view, const std::string& previous_output_dir) override {
-    files_ = std::make_unique<VtkSeriesFiles>(view.output_dir, "gas", "vtr");
+    files_ = make_files(view);
     files_->resume(std::move(restored_), previous_output_dir);
+    if (view.piece != nullptr) view.piece->comm->barrier();  // rank 0 has removed stale pieces
   }
 
  private:
+  static std::unique_ptr<VtkSeriesFiles> make_files(const StateView& view) {
+    if (view.piece != nullptr)
+      return std::make_unique<VtkSeriesFiles>(
+          piece_series_files(view.output_dir, "gas", "vtr", *view.piece));
+    return std::make_unique<VtkSeriesFiles>(view.output_dir, "gas", "vtr");
+  }
+
   SoundSpeedFunction sound_speed_;
   std::unique_ptr<VtkSeriesFiles> files_;
   VtkSeriesFiles::State restored_;

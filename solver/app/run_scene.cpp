@@ -97,9 +97,9 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   if (root && options.extra_observers) {
     for (auto& o : options.extra_observers()) sim.add_observer(std::move(o));
   }
-  if (root) {
-    for (auto& o : make_output_observers(scene, out_dir)) sim.add_observer(std::move(o));
-  }
+  // Rank 0 holds every output; the others only the writers of their pieces (the same ones,
+  // in the same order, since their writes are collective).
+  for (auto& o : make_output_observers(scene, out_dir, !root)) sim.add_observer(std::move(o));
   if (options.restart != nullptr) {
     try {
       sim.restore(*options.restart, options.restart_folder);

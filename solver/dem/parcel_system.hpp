@@ -223,6 +223,8 @@ class ParcelSystem {
   void drop_decomposition();
   /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
+  /// Per parcel: 1 = another rank's copy; empty when the system is not decomposed.
+  std::span<const std::uint8_t> ghost_flags() const { return ghost_; }
   /// Parcels this rank owns (size() in a one-rank run).
   std::size_t owned_count() const;
   /// Appends every owned parcel's full state (all columns, wall history and its contact

@@ -2,8 +2,11 @@
 // Observers read the simulation at output times through a read-only StateView.
 // insitu/ implements them (VTK writers, filters, series); the solver never
 // includes insitu/ headers, VTK or HDF5.
+#include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_solver.hpp"
@@ -14,11 +17,31 @@ namespace dustlift {
 
 class ParcelSystem;         // solver/dem/parcel_system.hpp
 class GasParticleCoupling;  // solver/coupling/gas_particle_coupling.hpp
+class Communicator;         // solver/parallel/communicator.hpp
 
 /// How the run was made, for the files that record it (VTK field data, series.h5 attributes).
 struct Provenance {
   std::string code_version;  ///< "0.1.0 (git a240b3b)"
   std::string command_line;  ///< the dustlift command that started this run (segment)
+};
+
+/// The part of a decomposed run one rank holds, for the observers that write one piece per
+/// rank (Observer::writes_pieces): the view's grid, gas and alpha_p are then the rank's slab,
+/// whose interior columns are the whole grid's columns [column_bounds[rank],
+/// column_bounds[rank + 1]), and its parcels the rank's table, in which the copies of other
+/// ranks' parcels are flagged.
+struct RunPiece {
+  const Communicator* comm = nullptr;  ///< every rank of the run (collective writes)
+  int rank = 0;
+  std::vector<int> column_bounds;  ///< per rank, as SlabLayout::bounds
+  int whole_columns() const { return column_bounds.back(); }
+  /// The slab's ghost columns at its cuts hold the neighbours' current cells (one each side
+  /// where the slab has a neighbour): derivatives at a cut read them, as one rank would.
+  bool neighbour_left() const { return rank > 0; }
+  bool neighbour_right() const { return rank + 2 < static_cast<int>(column_bounds.size()); }
+  /// Per parcel of the view's table: 1 = another rank's copy (a ghost), not written here.
+  /// Empty: every parcel is the rank's own.
+  std::span<const std::uint8_t> parcel_ghosts;
 };
 
 struct StateView {
@@ -37,6 +60,9 @@ struct StateView {
   const Provenance* provenance = nullptr; ///< null: not recorded
   /// The run's log (run.log and the terminal), one line per call; null: no log (tests).
   const std::function<void(const std::string&)>* log = nullptr;
+  /// Set for an observer that writes pieces, in a decomposed run: the rank's slab (RunPiece).
+  /// Null: the view shows the whole run (one rank, or the state gathered on rank 0).
+  const RunPiece* piece = nullptr;
 };
 
 class Observer {
@@ -64,6 +90,11 @@ class Observer {
     kReadsEverything = 31u
   };
   virtual unsigned step_reads() const { return kReadsEverything; }
+  /// Whether this observer writes one piece per rank in a decomposed run: it is then made on
+  /// every rank, called on every rank at the same points with its slab's view
+  /// (StateView::piece; its calls may be collective), and needs no gather. Otherwise it
+  /// lives on rank 0 and sees the whole state gathered there.
+  virtual bool writes_pieces() const { return false; }
   /// Called once after the last step of a run that reached its end (or step limit); not
   /// after an interruption (the next segment continues the same series).
   virtual void on_finish(const StateView& view) { on_output(view); }

@@ -354,6 +354,23 @@ StateView Simulation::view(const std::string& output_dir) const {
   return v;
 }
 
+StateView Simulation::piece_view(const std::string& output_dir) const {
+  if (!decomposed_) return view(output_dir);
+  StateView v = view(output_dir);
+  // The slab itself (rank 0's view() shows the gathered whole).
+  v.grid = &grid_;
+  v.gas = gas_.get();
+  v.primitives = gas_->primitives();
+  v.parcels = parcels_.get();
+  v.alpha_p = coupling_ ? &coupling_->alpha_p() : nullptr;
+  piece_.comm = comm_;
+  piece_.rank = layout_.rank;
+  piece_.column_bounds = layout_.bounds;
+  piece_.parcel_ghosts = parcels_ ? parcels_->ghost_flags() : std::span<const std::uint8_t>();
+  v.piece = &piece_;
+  return v;
+}
+
 std::vector<std::string> Simulation::enabled_effects() const {
   std::vector<std::string> e;
   const auto& g = scene_.gas;
@@ -527,16 +544,19 @@ RunEnd Simulation::run(const std::string& output_dir) {
   first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
   first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
   first_parcel_substeps_ = parcels_ ? parcels_->parcel_substeps() : 0;
-  // Observers live on rank 0; every rank takes part in gathering what they see.
-  const bool gather = decomposed_ && comm_->any(!observers_.empty());
+  // Observers of the whole state live on rank 0; every rank takes part in gathering what
+  // they see. Those that write pieces run on every rank with its slab and need no gather.
+  bool whole_observers = false;
+  for (const auto& o : observers_) whole_observers = whole_observers || !o->writes_pieces();
+  const bool gather = decomposed_ && comm_->any(whole_observers);
   if (gather) gather_gas(false);
   {
-    const StateView v = view(output_dir);
+    const StateView v = view(output_dir), piece = piece_view(output_dir);
     for (auto& o : observers_) {
       if (restored_) {
-        o->on_resume(v, resumed_from_);
+        o->on_resume(view_for(*o, v, piece), resumed_from_);
       } else {
-        o->on_start(v);
+        o->on_start(view_for(*o, v, piece));
       }
     }
   }
@@ -560,7 +580,7 @@ RunEnd Simulation::run(const std::string& output_dir) {
         unsigned reads = output_due ? Observer::kReadsEverything : 0u;
         const StateView now = view(output_dir);
         for (auto& o : observers_) {
-          if (!o->reads_step(now)) continue;
+          if (o->writes_pieces() || !o->reads_step(now)) continue;
           read = true;
           reads |= o->step_reads();
         }
@@ -570,10 +590,10 @@ RunEnd Simulation::run(const std::string& output_dir) {
           gather_gas(false, reads);
         }
       }
-      const StateView v = view(output_dir);
-      for (auto& o : observers_) o->on_step(v);
+      const StateView v = view(output_dir), piece = piece_view(output_dir);
+      for (auto& o : observers_) o->on_step(view_for(*o, v, piece));
       if (interval > 0.0 && time_ >= multiple_time(next_output_, interval)) {
-        for (auto& o : observers_) o->on_output(v);
+        for (auto& o : observers_) o->on_output(view_for(*o, v, piece));
         next_output_ = first_multiple_after(time_, interval);
       }
     }
@@ -606,7 +626,8 @@ RunEnd Simulation::run(const std::string& output_dir) {
   if (how != RunEnd::Interrupted) {
     const ScopedTimer t(timings_.observers);
     if (gather) gather_gas(false);
-    for (auto& o : observers_) o->on_finish(view(output_dir));
+    const StateView v = view(output_dir), piece = piece_view(output_dir);
+    for (auto& o : observers_) o->on_finish(view_for(*o, v, piece));
   }
   if (checkpoint_ && last_checkpoint_step != step_) write_checkpoint();
   restored_ = false;

@@ -37,8 +37,9 @@ class Simulation {
  public:
   /// With a communicator of several ranks the grid is cut into x-slabs, one per rank
   /// (issue 12; docs/parallel.md): every rank must then make the same calls (advance, run,
-  /// snapshot, restore, work_summary are collective), observers belong on rank 0 only, and
-  /// they see the whole grid gathered there. Gas-only scenes so far.
+  /// snapshot, restore, work_summary are collective). Observers belong on rank 0 and see the
+  /// whole state gathered there, except those that write pieces (Observer::writes_pieces),
+  /// which every rank adds in the same order and which see their rank's slab.
   explicit Simulation(const Scene& scene, const Communicator* comm = nullptr);
   ~Simulation();
 
@@ -90,6 +91,9 @@ class Simulation {
 
   /// What observers see: on rank 0 of a decomposed run the whole grid as last gathered.
   StateView view(const std::string& output_dir = {}) const;
+  /// What an observer that writes pieces sees in a decomposed run: this rank's slab and its
+  /// parcels (StateView::piece); the same as view() otherwise.
+  StateView piece_view(const std::string& output_dir = {}) const;
   double time() const { return time_; }
   long long step() const { return step_; }
   const Scene& scene() const { return scene_; }
@@ -169,6 +173,11 @@ class Simulation {
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
   std::vector<std::unique_ptr<Observer>> observers_;
+  mutable RunPiece piece_;  ///< what piece_view shows (refreshed by each call)
+  /// The view an observer's calls get: its piece on several ranks when it writes pieces.
+  StateView view_for(const Observer& o, const StateView& whole, const StateView& piece) const {
+    return decomposed_ && o.writes_pieces() ? piece : whole;
+  }
   std::function<void(const Progress&)> progress_;
   std::function<void(const std::string&)> log_;
   std::function<void(const Simulation&)> checkpoint_;

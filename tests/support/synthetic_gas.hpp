@@ -1,0 +1,29 @@
+#pragma once
+// A synthetic gas output for the writer tests: distinct values per cell and array.
+#include <cmath>
+
+#include "insitu/gas_cells.hpp"
+
+namespace dustlift::testing {
+
+/// Synthetic gas state on a stretched 7 x 5 grid with distinct values per cell and array.
+inline GasCellArrays synthetic_gas() {
+  GasCellArrays g;
+  g.x_nodes = {0.0, 0.001, 0.0025, 0.0045, 0.007, 0.01, 0.014, 0.019};
+  g.y_nodes = {0.0, 0.0005, 0.0011, 0.0018, 0.0026, 0.0035};
+  g.resize(g.nx(), g.ny());
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    const double s = static_cast<double>(k);
+    g.density[k] = 1.2 + 0.01 * s;
+    g.velocity_x[k] = 100.0 + s;
+    g.velocity_y[k] = -3.0 * s;
+    g.pressure[k] = 101325.0 + 17.0 * s;
+    g.temperature[k] = 300.0 + 0.5 * s;
+    g.mach[k] = 0.001 * s;
+    g.alpha_p[k] = s / 100.0;
+    g.vorticity[k] = 1e4 * std::sin(s);
+  }
+  return g;
+}
+
+}  // namespace dustlift::testing
