@@ -9,7 +9,7 @@ undisturbed top by 0.1 mm) and the plateau are taken from the running median of 
 5 mm of x (20 columns of the paper grid); the delay of the raw columns is given too.
 
 RUN_DIR is an output folder of `dustlift run` (cases/paper/vertical_shock.toml or a study
-run of it). Reads its series (series/*.csv) and gas VTK files (vtk/gas_*.vtr, through
+run of it). Reads its series (series/*.csv) and gas VTK files (vtk/gas_*.vtr, or .pvtr of an MPI run, through
 Debian's python3-vtk9) and prints one JSON object; docs/results.md explains each entry and
 analysis/paper_results.py turns several runs into its tables and figures.
 
@@ -172,7 +172,8 @@ def band_numbers(band):
 def read_vtr(path):
     import vtk  # python3-vtk9 (Debian)
     from vtk.util.numpy_support import vtk_to_numpy
-    r = vtk.vtkXMLRectilinearGridReader()
+    # A run on several MPI ranks writes its gas as a .pvtr joining the ranks' pieces.
+    r = vtk.vtkXMLPRectilinearGridReader() if path.endswith(".pvtr") else vtk.vtkXMLRectilinearGridReader()
     r.SetFileName(path)
     r.Update()
     g = r.GetOutput()

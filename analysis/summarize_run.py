@@ -58,8 +58,9 @@ def last_gas_line(outdir):
         return None
     files = [d.get("file") for d in ET.parse(pvd).getroot().iter("DataSet")]
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOXML import vtkXMLRectilinearGridReader
-    reader = vtkXMLRectilinearGridReader()
+    from vtkmodules.vtkIOXML import vtkXMLPRectilinearGridReader, vtkXMLRectilinearGridReader
+    # A run on several MPI ranks lists .pvtr files that join the ranks' pieces.
+    reader = vtkXMLPRectilinearGridReader() if files[-1].endswith(".pvtr") else vtkXMLRectilinearGridReader()
     reader.SetFileName(os.path.join(outdir, files[-1]))
     reader.Update()
     grid = reader.GetOutput()

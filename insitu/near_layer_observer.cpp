@@ -18,6 +18,8 @@ class NearLayerObserver final : public Observer {
         table_("near_layer", {{"time", "s"}, {"x", "m"}, {"y", "m"}, {"u", "m/s"}, {"v", "m/s"},
                               {"vorticity", "1/s"}, {"alpha_p", "1"}}) {}
 
+  // u, v and alpha_p (the gas gathers whole).
+  unsigned output_reads() const override { return kReadsGas | kReadsAlphaP; }
   void on_output(const StateView& view) override {
     if (written_ && view.time == last_time_) return;  // on_finish right after an output
     const Grid2D& g = *view.grid;

@@ -87,6 +87,7 @@ class BandForceObserver final : public Observer {
   bool reads_step(const StateView&) const override { return options_.sample_every_step; }
   // The band parcels, and the pressure for the shock's arrival.
   unsigned step_reads() const override { return kReadsPressure | kReadsBandParcels; }
+  unsigned output_reads() const override { return step_reads(); }
   void on_step(const StateView& view) override {
     if (options_.sample_every_step) sample(view);
   }

@@ -24,6 +24,7 @@ class ProbeObserver final : public Observer {
     return options_.interval > 0.0 ? view.time >= multiple_time(next_sample_, options_.interval) : true;
   }
   unsigned step_reads() const override { return kReadsGas | kReadsAlphaP; }
+  unsigned output_reads() const override { return step_reads(); }
   void on_step(const StateView& view) override {
     if (reads_step(view)) sample(view);
   }

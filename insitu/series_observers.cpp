@@ -38,6 +38,7 @@ class SurfaceHeightObserver final : public Observer {
         profile_("surface_height", {{"time", "s"}, {"x", "m"}, {"height", "m"}}),
         stations_("surface_height_stations", station_columns(options_.stations_x)) {}
 
+  unsigned output_reads() const override { return kReadsAlphaP; }
   void on_output(const StateView& view) override {
     require_grid(view, view.primitives.alpha_g, "SurfaceHeightObserver");
     if (written_ && view.time == last_time_) return;  // on_finish right after an output
@@ -98,6 +99,7 @@ class ShockPositionObserver final : public Observer {
 
   bool reads_step(const StateView&) const override { return options_.every_step; }
   unsigned step_reads() const override { return kReadsPressure; }
+  unsigned output_reads() const override { return kReadsPressure; }
   void on_step(const StateView& view) override {
     if (options_.every_step) sample(view);
   }

@@ -90,6 +90,10 @@ class Observer {
     kReadsEverything = 31u
   };
   virtual unsigned step_reads() const { return kReadsEverything; }
+  /// What on_start, on_output and on_finish read (StepRead bits): a decomposed run gathers
+  /// on rank 0 at outputs only what its observers of the whole state read. Default:
+  /// everything.
+  virtual unsigned output_reads() const { return kReadsEverything; }
   /// Whether this observer writes one piece per rank in a decomposed run: it is then made on
   /// every rank, called on every rank at the same points with its slab's view
   /// (StateView::piece; its calls may be collective), and needs no gather. Otherwise it

@@ -547,9 +547,16 @@ RunEnd Simulation::run(const std::string& output_dir) {
   // Observers of the whole state live on rank 0; every rank takes part in gathering what
   // they see. Those that write pieces run on every rank with its slab and need no gather.
   bool whole_observers = false;
-  for (const auto& o : observers_) whole_observers = whole_observers || !o->writes_pieces();
+  unsigned output_reads = 0;  // what they read at outputs (Observer::output_reads)
+  for (const auto& o : observers_) {
+    if (o->writes_pieces()) continue;
+    whole_observers = true;
+    output_reads |= o->output_reads();
+  }
   const bool gather = decomposed_ && comm_->any(whole_observers);
-  if (gather) gather_gas(false);
+  // Observers live on rank 0 (the others' is 0): a max is rank 0's value everywhere.
+  if (gather) output_reads = static_cast<unsigned>(-comm_->min(-static_cast<double>(output_reads)));
+  if (gather) gather_gas(false, output_reads);
   {
     const StateView v = view(output_dir), piece = piece_view(output_dir);
     for (auto& o : observers_) {
@@ -577,7 +584,7 @@ RunEnd Simulation::run(const std::string& output_dir) {
       const bool output_due = interval > 0.0 && time_ >= multiple_time(next_output_, interval);
       if (gather) {
         bool read = output_due;
-        unsigned reads = output_due ? Observer::kReadsEverything : 0u;
+        unsigned reads = output_due ? output_reads : 0u;
         const StateView now = view(output_dir);
         for (auto& o : observers_) {
           if (o->writes_pieces() || !o->reads_step(now)) continue;
@@ -625,7 +632,7 @@ RunEnd Simulation::run(const std::string& output_dir) {
   }
   if (how != RunEnd::Interrupted) {
     const ScopedTimer t(timings_.observers);
-    if (gather) gather_gas(false);
+    if (gather) gather_gas(false, output_reads);
     const StateView v = view(output_dir), piece = piece_view(output_dir);
     for (auto& o : observers_) o->on_finish(view_for(*o, v, piece));
   }
