@@ -123,7 +123,6 @@ void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHal
   whole_ = &whole;
   first_column_ = first_column;
   halo_ = &halo;
-  skip_resting_ = false;
   // The fields a slab makes in every cell and exchanges (members: their addresses stay).
   derived_fields_.clear();
   if (needs_vorticity()) derived_fields_.push_back(&vorticity_);
@@ -237,8 +236,10 @@ void GasParticleCoupling::plan_scatter(std::size_t count) {
 }
 
 int GasParticleCoupling::deposit_column_bound(double x) const {
-  // A stencil's square [x0, x0 + w] with x0 >= x - w/2 clipped at the start (deposit_stencil, grid_transfer.hpp).
-  const double right = std::max(x + 0.5 * std::max(cfg_.influence_width, 0.0), grid_.x().start() + cfg_.influence_width);
+  // A stencil's square [x0, x0 + w] with x0 >= x - w/2 clipped at the start (deposit_stencil,
+  // grid_transfer.hpp).
+  const double right = std::max(x + 0.5 * std::max(cfg_.influence_width, 0.0),
+                                grid_.x().start() + cfg_.influence_width);
   return std::min(grid_.nx() - 1, grid_.x().locate(right) + 1);
 }
 
@@ -394,7 +395,8 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   // The derivatives are needed where the sampled parcels' quads read them: their rows and
   // columns, two cells of margin (the quad and the 3-point stencils).
   int j0 = 0, j1 = 0, i1 = grid_.nx();
-  if (active == ps.size()) {
+  // A slab makes them in every cell whatever it steps, and row_range is collective there.
+  if (active == ps.size() || halo_ != nullptr) {
     row_range(ps, j0, j1);
   } else if (active > 0) {
     j0 = std::max(0, grid_.y().locate(active_y_min_) - 2);
@@ -711,13 +713,59 @@ ExchangeTotals GasParticleCoupling::last_exchange(const ParcelSystem& ps) const 
   return e;
 }
 
-std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, ParcelSystem& ps, double dt) {
+void GasParticleCoupling::resting_on_slab(const GasSolver& gas, const ParcelSystem& ps) {
+  // The whole grid's reference: the last cell of the last slab (-inf elsewhere, so that a max
+  // over the ranks gives the last rank's values).
+  gas.resting_gas(resting_);
+  constexpr double kNone = -std::numeric_limits<double>::infinity();
+  const bool last = halo_->owns_right_boundary();
+  double reference[6] = {last ? (resting_.valid ? 1.0 : 0.0) : kNone,
+                         last ? resting_.p : kNone,
+                         last ? resting_.T : kNone,
+                         last ? resting_.du : kNone,
+                         last ? resting_.dp : kNone,
+                         last ? resting_.dT : kNone};
+  ps.max_over_ranks(reference);
+  GasSolver::RestingGas whole;
+  whole.valid = reference[0] > 0.5;
+  whole.p = reference[1];
+  whole.T = reference[2];
+  whole.du = reference[3];
+  whole.dp = reference[4];
+  whole.dT = reference[5];
+  gas.resting_gas(resting_, whole);
+  // Per row, the first whole-grid column from which the row rests to the domain's end: the
+  // largest of the ranks' own (a slab's scan runs to its ghost columns, the neighbour's first
+  // cells; one whose interior rests from its first column on defers to the ranks before it,
+  // and the first rank counts its boundary ghosts as one rank does).
+  const int ny = grid_.ny();
+  rest_rows_.resize(static_cast<std::size_t>(ny));
+  const bool first = halo_->owns_left_boundary();
+  for (int j = 0; j < ny; ++j) {
+    const int local = resting_.first_resting[static_cast<std::size_t>(j)];
+    rest_rows_[static_cast<std::size_t>(j)] =
+        !first && local <= 0 ? kNone : static_cast<double>(first_column_ + local);
+  }
+  ps.max_over_ranks(rest_rows_);
+  for (int j = 0; j < ny; ++j) {
+    resting_.first_resting[static_cast<std::size_t>(j)] =
+        static_cast<int>(rest_rows_[static_cast<std::size_t>(j)]);
+  }
+}
+
+std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, ParcelSystem& ps,
+                                                     double dt) {
   const std::size_t n = ps.size();
   double* rest_steps = ps.column(col_.rest_steps).data();
   double* active = ps.column(col_.active).data();
   std::size_t limit = n;
-  if (skip_resting_ && n > 0) {
-    gas.resting_gas(resting_);
+  // On a slab every rank takes part (its collectives), parcels or not.
+  if (skip_resting_ && (n > 0 || halo_ != nullptr)) {
+    if (halo_ == nullptr) {
+      gas.resting_gas(resting_);
+    } else {
+      resting_on_slab(gas, ps);
+    }
     // The counts hold for one reference state: a new one starts them again.
     if (!resting_.valid || resting_.p != rest_p_ || resting_.T != rest_T_) {
       std::fill(rest_steps, rest_steps + n, 0.0);
@@ -728,9 +776,11 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
     // rests when every row j-2..j+2 (j its row) rests from column i-2 on (i its column), that
     // is, when x >= face(first_resting + 2) of each of those rows: one threshold per row
     // window, and one for all rows, so that most resting parcels need no locate at all.
+    // On a slab first_resting is in the whole grid's columns (resting_on_slab).
     const int* first_resting = resting_.first_resting.data();
-    const int ny = grid_.ny(), nx = grid_.nx();
-    const Axis& ax = grid_.x();
+    const int ny = grid_.ny();
+    const Axis& ax = whole_ != nullptr ? whole_->x() : grid_.x();
+    const int nx = ax.cells();
     auto row_threshold = [&](int r) {
       const int column = first_resting[r] + 2;  // locate(x) >= column <=> x >= face(column)
       if (column <= 0) return -std::numeric_limits<double>::infinity();
@@ -766,15 +816,24 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       v_max = std::max(v_max, std::sqrt(ps.vx[k] * ps.vx[k] + ps.vy[k] * ps.vy[k]));
       d_max = std::max(d_max, ps.diameter[k]);
     }
+    if (halo_ != nullptr) {
+      // A push from a moving parcel of any rank may reach this rank's parcels: the front and
+      // the speeds of all ranks.
+      double maxima[3] = {front, v_max, d_max};
+      ps.max_over_ranks(maxima);
+      front = maxima[0];
+      v_max = maxima[1];
+      d_max = maxima[2];
+    }
     if (front == -std::numeric_limits<double>::infinity()) {
       limit = 0;  // everything rests
     } else {
       // Within one CFD step a push travels one contact per sub-step, parcels move v dt, and a
       // parcel's samples read the alpha_p and gas of cells within two cells of it.
-      const int i_front = grid_.x().locate(front);
+      const int i_front = ax.locate(front);
       double cell = 0.0;
-      for (int i = std::max(i_front - 4, 0); i <= std::min(i_front + 12, grid_.nx() - 1); ++i) {
-        cell = std::max(cell, grid_.x().width(i));
+      for (int i = std::max(i_front - 4, 0); i <= std::min(i_front + 12, nx - 1); ++i) {
+        cell = std::max(cell, ax.width(i));
       }
       const double reach = (ps.substeps_for(dt) + 2) * d_max + 2.0 * v_max * dt + 4.0 * cell + cfg_.influence_width;
       const double cut = front + reach;

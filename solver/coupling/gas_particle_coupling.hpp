@@ -78,7 +78,7 @@ class GasParticleCoupling {
   };
   const Timings& timings() const { return timings_; }
   /// Skip parcels resting exactly (see plan_active_parcels); on by default.
-  void set_skip_resting(bool on) { skip_resting_ = on && halo_ == nullptr; }
+  void set_skip_resting(bool on) { skip_resting_ = on; }
   /// Parcels stepped in the last CFD step (the others rested exactly).
   std::size_t last_active_parcels() const { return last_active_; }
   /// Deposited particle volume fraction (eq. 12), before the cap.
@@ -88,6 +88,8 @@ class GasParticleCoupling {
   /// and the gas pressure sampled at the start of the last step.
   ParcelColumn gas_rotation_column() const { return col_.gas_rotation; }
   ParcelColumn relative_rotation_column() const { return col_.relative_rotation; }
+  /// 1 for the parcels stepped in the last CFD step, 0 for those left resting.
+  ParcelColumn stepped_column() const { return col_.active; }
   ParcelColumn gas_pressure_column() const { return col_.gas_p; }
 
   bool needs_vorticity() const;
@@ -130,6 +132,10 @@ class GasParticleCoupling {
   /// sub-steps. With run.rest_tolerance "at rest" is within the tolerance (rest_ranges.hpp:
   /// parcel_still). Returns how many parcels, from the first, are stepped.
   std::size_t plan_active_parcels(const GasSolver& gas, ParcelSystem& parcels, double dt);
+  /// On a slab: resting_ for the whole grid, agreed over the ranks (collective): the whole
+  /// grid's reference state, and first_resting per row in the whole grid's columns, as one
+  /// rank finds them.
+  void resting_on_slab(const GasSolver& gas, const ParcelSystem& parcels);
   /// Drag and heat exchange are stiff in a packed layer: the gas in a cell holds far less
   /// momentum and heat than its particles (mass loading ~ 700 at alpha_p = 0.59), so its
   /// relaxation time can be shorter than a CFD step. With explicit, frozen-gas exchange the
@@ -215,7 +221,9 @@ class GasParticleCoupling {
   GasSolver::RestingGas resting_;
   double rest_p_ = 0.0, rest_T_ = 0.0;  ///< the reference the rest_steps counts refer to
   std::vector<std::uint8_t> near_scratch_;  ///< per thread, derivatives_near_parcels
-  std::vector<double> rest_x_threshold_;  ///< per row: the gas over parcels at x >= it rests (plan_active_parcels)
+  std::vector<double> rest_rows_;           ///< resting_on_slab's per-row exchange
+  std::vector<double>
+      rest_x_threshold_;  ///< per row: the gas over parcels at x >= it rests (plan_active_parcels)
   std::size_t last_active_ = 0;
 };
 

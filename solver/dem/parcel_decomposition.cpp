@@ -544,6 +544,13 @@ double ParcelSystem::max_over_ranks(double value) const {
   return comm_ != nullptr ? -comm_->min(-value) : value;
 }
 
+void ParcelSystem::max_over_ranks(std::span<double> values) const {
+  if (comm_ == nullptr) return;
+  for (double& v : values) v = -v;
+  comm_->min_each(values);
+  for (double& v : values) v = -v;
+}
+
 std::string ParcelSystem::first_failure(const std::string& local) const {
   return comm_ != nullptr ? comm_->first_nonempty(local) : local;
 }

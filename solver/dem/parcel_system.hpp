@@ -217,6 +217,8 @@ class ParcelSystem {
   std::string first_failure(const std::string& local) const;
   /// Collective in decomposed runs: the largest value over the ranks (the value otherwise).
   double max_over_ranks(double value) const;
+  /// Element by element, in place (one message for all of them).
+  void max_over_ranks(std::span<double> values) const;
   bool decomposed() const { return comm_ != nullptr; }
   /// Back to a one-rank system's bookkeeping (the table is left as it is): a restart first
   /// takes the whole checkpointed system into a copy of this one, then splits it again.

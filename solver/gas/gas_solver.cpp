@@ -16,8 +16,8 @@
 #include "solver/gas/flux_rows.hpp"
 #include "solver/gas/gas_halo.hpp"
 #include "solver/gas/muscl.hpp"
-#include "solver/gas/shock_relations.hpp"
 #include "solver/gas/rest_ranges.hpp"
+#include "solver/gas/shock_relations.hpp"
 #include "solver/gas/slau2.hpp"
 #include "solver/gas/stage_update.hpp"
 #include "solver/gas/thermo.hpp"
@@ -103,7 +103,8 @@ struct GasSolver::Impl {
   /// the ranges updated so far; a cell enters it before its first update of the step).
   std::vector<int> saved_lo, saved_hi;
   std::vector<int> widened_lo_, widened_hi_;  ///< scratch of widen_active_ranges
-  /// Geometry per index (ghosts included, offset ng): 1/width, 1/(c_{i+1}-c_i), 1/(c_{i+1}-c_{i-1}).
+  /// Geometry per index (ghosts included, offset ng): 1/width, 1/(c_{i+1}-c_i),
+  /// 1/(c_{i+1}-c_{i-1}).
   std::vector<double> inv_dx, inv_dy, inv_dxc, inv_dyc, inv_dx2, inv_dy2;
   /// Inflow states along each boundary (one per boundary cell).
   std::vector<PrimitiveState> inflow_left, inflow_right, inflow_bottom, inflow_top;
@@ -1039,11 +1040,31 @@ void GasSolver::resting_gas(RestingGas& out) const {
   const Impl& m = *impl_;
   const RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));
   // Under gravity no gas rests: the body force changes every cell's momentum.
-  out.valid = ref.valid && !m.config.has_gravity();
+  RestingGas reference;
+  reference.valid = ref.valid && !m.config.has_gravity();
+  reference.p = ref.p;
+  reference.T = ref.T;
+  reference.dT = ref.dT;
+  reference.du = ref.du;
+  reference.dp = ref.dp;
+  resting_gas(out, reference);
+}
+
+void GasSolver::resting_gas(RestingGas& out, const RestingGas& reference) const {
+  const Impl& m = *impl_;
+  RestReference ref;
+  ref.valid = reference.valid;
+  ref.p = reference.p;
+  ref.T = reference.T;
+  ref.du = reference.du;
+  ref.dp = reference.dp;
+  ref.dT = reference.dT;
+  out.valid = reference.valid;
   out.p = ref.p;
   out.T = ref.T;
   out.dT = ref.dT;
   out.du = ref.du;
+  out.dp = ref.dp;
   out.first_resting.resize(static_cast<std::size_t>(m.ny));
   const int cells = m.nx + 2 * m.ng;
 #pragma omp parallel for if (m.threaded) schedule(static)

@@ -64,10 +64,15 @@ class GasSolver {
   struct RestingGas {
     bool valid = false;
     double p = 0.0, T = 0.0;
-    double du = 0.0, dT = 0.0;  ///< m/s, K: how far a resting state may be from rest (run.rest_tolerance)
+    double du = 0.0,
+           dT = 0.0;  ///< m/s, K: how far a resting state may be from rest (run.rest_tolerance)
+    double dp = 0.0;  ///< Pa, likewise
     std::vector<int> first_resting;
   };
   void resting_gas(RestingGas& out) const;
+  /// The same at the state of `reference` (its valid, p, T and tolerances) instead of this
+  /// grid's last cell: a slab of a decomposed run rests at the whole grid's reference.
+  void resting_gas(RestingGas& out, const RestingGas& reference) const;
 
   /// Adds to per_column[i] (one entry per interior column) the cells of column i the last
   /// stage updated: the work a decomposed run balances (everything without skipping).

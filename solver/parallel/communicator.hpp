@@ -20,6 +20,9 @@ class Communicator {
 
   /// Reductions over all ranks (exact: a min, an integer sum, a logical or).
   virtual double min(double value) const = 0;
+  /// Element by element: every rank's `values` become the minimum over the ranks (one
+  /// allreduce; every rank passes as many).
+  virtual void min_each(std::span<double> values) const = 0;
   virtual long long sum(long long value) const = 0;
   virtual bool any(bool value) const = 0;
   /// The text of the lowest-numbered rank whose text is not empty ("" when all are).
@@ -69,6 +72,7 @@ class SingleRank final : public Communicator {
   int rank() const override { return 0; }
   int size() const override { return 1; }
   double min(double value) const override { return value; }
+  void min_each(std::span<double>) const override {}
   long long sum(long long value) const override { return value; }
   bool any(bool value) const override { return value; }
   std::string first_nonempty(const std::string& text) const override { return text; }

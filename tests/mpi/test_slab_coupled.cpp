@@ -107,7 +107,14 @@ TEST(SlabCoupled, ShockOverDustOnTwoRanksMatchesOneRankBitForBit) {
   omp_set_num_threads(1);
   Simulation two(scene, &world());
   ASSERT_TRUE(two.decomposed());
-  advance_steps(two, kSteps);
+  // Early on the parcels ahead of the shock rest exactly and are skipped on the slabs too
+  // (exactly: the comparison below), on the rank that holds them.
+  constexpr int kEarly = 5;
+  advance_steps(two, kEarly);
+  const double skipped =
+      static_cast<double>(two.parcels()->size() - two.coupling()->last_active_parcels());
+  EXPECT_GT(-world().min(-skipped), 100.0);
+  advance_steps(two, kSteps - kEarly);
   EXPECT_GT(two.parcels()->size(), two.parcels()->owned_count());  // ghosts
   // The parcels at the cut (within 1 mm of it) have moved.
   const ParcelSystem& p = *two.parcels();

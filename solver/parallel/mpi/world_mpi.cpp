@@ -30,6 +30,10 @@ class WorldCommunicator final : public Communicator {
     MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
     return out;
   }
+  void min_each(std::span<double> values) const override {
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN,
+                  MPI_COMM_WORLD);
+  }
   long long sum(long long value) const override {
     long long out = value;
     MPI_Allreduce(&value, &out, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
