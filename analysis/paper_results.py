@@ -423,7 +423,7 @@ def main(argv):
                 "0.6 ms):\n\n")
         f.write(readings_table(runs, ["paper", "jittered", "hexagonal", "cap03", "proxy_paper", "proxy_jittered_clm1",
                                       "proxy_hexagonal", "proxy_nocoulomb", "proxy_cap03", "proxy_xi2_linear",
-                                      "proxy_xi2_none", "xi2_none", "proxy_nodegrid", "nodegrid", "influence250",
+                                      "proxy_xi2_none", "proxy_nodrag", "xi2_none", "proxy_nodegrid", "nodegrid", "influence250",
                                       "proxy_nodegrid_cap03", "proxy_nodegrid_linear", "proxy_nodegrid_none"]))
     print("wrote", os.path.join(a.docs, "numbers.md"))
     with open(os.path.join(a.docs, "runs.md"), "w") as f:

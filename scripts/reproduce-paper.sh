@@ -68,6 +68,7 @@ runs=(
   "proxy_xi2_linear|proxy|coupling.volume_fraction_correction=linear"
   "proxy_nodegrid|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875"
   "proxy_nopressure|proxy|coupling.pressure_force=false"
+  "proxy_nodrag|proxy|coupling.drag=false"
   "proxy_nodegrid_cap03|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875 coupling.volume_fraction_cap=0.3"
   "proxy_nodegrid_linear|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875 coupling.volume_fraction_correction=linear"
   "proxy_nodegrid_none|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875 coupling.volume_fraction_correction=none"
