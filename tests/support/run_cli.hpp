@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 #include <sys/wait.h>
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift::testing {
 
@@ -34,13 +35,9 @@ inline CliResult run_command(const std::string& command) {
 /// Runs the dustlift executable with `args`.
 inline CliResult run_cli(const std::string& args) { return run_command(std::string(DUSTLIFT_BINARY) + " " + args); }
 
-/// A fresh empty folder under the system temp directory.
-inline std::filesystem::path fresh_dir(const std::string& name) {
-  auto p = std::filesystem::temp_directory_path() / ("dustlift_test_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(p);
-  std::filesystem::create_directories(p);
-  return p;
-}
+/// A fresh empty folder under the system temp directory (scratch_dir.hpp: removed when the
+/// test passes).
+inline std::filesystem::path fresh_dir(const std::string& name) { return scratch_dir("test_" + name); }
 
 inline void write_file(const std::filesystem::path& p, const std::string& text) {
   std::ofstream(p) << text;

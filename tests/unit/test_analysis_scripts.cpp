@@ -17,6 +17,7 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/series_table.hpp"
 #include "insitu/vtk_writers.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
@@ -24,13 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 const char* kPython = "/usr/bin/python3";
 
-fs::path fresh_dir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() /
-                   ("dustlift_analysis_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("analysis_" + name); }
 
 /// Runs a command, returns (exit status, stdout + stderr).
 std::pair<int, std::string> run(const std::string& command) {

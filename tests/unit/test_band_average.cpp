@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "insitu/band_average.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
@@ -93,8 +94,7 @@ TEST(BandAverage, KnownForcesAndArrivalsGiveKnownBinMeans) {
 
 TEST(BandAverage, TableHasOneRowPerFilledBinAndIsWrittenAsCsv) {
   Synthetic s;
-  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_band_series_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
+  const auto dir = testing::scratch_dir("band_series", false);
   BandForceSeries series({Band{"lower", 0.0, 0.1, 0.0, 0.002}, Band{"upper", 0.0, 0.1, 0.002, 0.004}},
                          options());
   const SeriesSink sink(dir.string());

@@ -11,18 +11,14 @@
 #include "insitu/observers.hpp"
 #include "insitu/series_table.hpp"
 #include "solver/core/field.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() /
-                   ("dustlift_parcel_observers_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("parcel_observers_" + name, false); }
 
 /// 10 x 2 cells of 1 cm; pressure 2e5 behind a step at xs, 1e5 ahead.
 struct Gas {

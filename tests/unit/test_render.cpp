@@ -23,6 +23,7 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/vtk_writers.hpp"
 #include "solver/core/derivatives.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
@@ -167,11 +168,9 @@ class Render : public ::testing::Test {
       FAIL() << "Xvfb and pvbatch are needed for offscreen rendering; install them with "
                 "scripts/install-deps.sh (packages xvfb, xauth, paraview, python3-paraview)";
     // Each test its own folder: the shipped state must find data away from where it was saved.
-    dir_ = fs::temp_directory_path() /
-           (std::string("dustlift_render_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-            std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    dir_ = testing::scratch_dir(std::string("render_") +
+                                    ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                                false);
     write_synthetic_run(dir_);
   }
   void TearDown() override {

@@ -9,6 +9,7 @@
 #include "insitu/observers.hpp"
 #include "insitu/series_table.hpp"
 #include "solver/core/field.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
@@ -20,9 +21,7 @@ struct SyntheticState {
   std::filesystem::path dir;
 
   explicit SyntheticState(const std::string& name)
-      : dir(std::filesystem::temp_directory_path() / ("dustlift_observers_" + name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(dir);
-  }
+      : dir(testing::scratch_dir("observers_" + name, false)) {}
   /// Shock at x_s (p = 2e5 behind it); layer alpha_p = 0.5 in the lowest `layer_cells` rows,
   /// the highest of them filled to `top_fill` (alpha_p = 0.5 top_fill).
   void set(double xs, int layer_cells, double top_fill = 1.0) {

@@ -27,6 +27,7 @@
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "support/synthetic_gas.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
@@ -34,13 +35,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::synthetic_gas;
 
-fs::path fresh_dir(const std::string& name) {
-  const auto dir =
-      fs::temp_directory_path() / ("dustlift_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("test_" + name); }
 
 /// Columns [i0, i1) of `whole` as a piece of their own.
 GasCellArrays columns_of(const GasCellArrays& whole, std::size_t i0, std::size_t i1) {

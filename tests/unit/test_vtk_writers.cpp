@@ -26,18 +26,14 @@
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "support/synthetic_gas.hpp"
+#include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
 namespace {
 
 using testing::synthetic_gas;
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dustlift_test_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path fresh_dir(const std::string& name) { return testing::scratch_dir("test_" + name); }
 
 std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
