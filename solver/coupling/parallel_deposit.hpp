@@ -33,20 +33,26 @@ class ParallelDeposit {
     reach_count_.assign(static_cast<std::size_t>(nx), 0);
     lo_.assign(static_cast<std::size_t>(threads), nx);
     hi_.assign(static_cast<std::size_t>(threads), -1);
+    outside_.assign(static_cast<std::size_t>(threads), 0);
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
     for (int c = 0; c < threads; ++c) {
       int lo = nx, hi = -1;
+      bool outside = false;
       for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
         const DepositStencil& d = stencils[k];
         for (int m = 0; m < d.count; ++m) {
           const int i = d.i[static_cast<std::size_t>(m)];
-          if (i < 0 || i >= nx) continue;
+          if (i < 0 || i >= nx) {
+            outside = true;
+            continue;
+          }
           lo = std::min(lo, i);
           hi = std::max(hi, i);
         }
       }
       lo_[static_cast<std::size_t>(c)] = lo;
       hi_[static_cast<std::size_t>(c)] = hi;
+      outside_[static_cast<std::size_t>(c)] = outside ? 1 : 0;
     }
     for (int c = 0; c < threads; ++c) {
       for (int i = lo_[static_cast<std::size_t>(c)]; i <= hi_[static_cast<std::size_t>(c)]; ++i) {
@@ -55,6 +61,8 @@ class ParallelDeposit {
     }
     threads_ = threads;
     nx_ = nx;
+    // One rank's stencils all lie in [0, nx): run() then skips the test per entry.
+    all_inside_ = std::find(outside_.begin(), outside_.end(), 1) == outside_.end();
     // The parcels that reach a shared column, in parcel order (chunk by chunk).
     deferred_by_chunk_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
@@ -77,14 +85,18 @@ class ParallelDeposit {
   /// Calls add(k, m) for every stencil entry m of every parcel k, in the two phases above.
   template <class Add>
   void run(const std::vector<DepositStencil>& stencils, Add&& add) const {
+    // Phase A without the tests it does not need (the same calls in the same order): one
+    // chunk shares no column; one rank's stencils all lie inside.
+    if (threads_ == 1 && all_inside_) {
+      phase_a<false, false>(0, stencils, add);
+      return;
+    }
 #pragma omp parallel for schedule(static, 1) num_threads(threads_) if (threads_ > 1)
     for (int c = 0; c < threads_; ++c) {
-      for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
-        const DepositStencil& d = stencils[k];
-        for (int m = 0; m < d.count; ++m) {
-          const int i = d.i[static_cast<std::size_t>(m)];
-          if (inside(i) && !shared(i)) add(k, m);
-        }
+      if (all_inside_) {
+        phase_a<false, true>(c, stencils, add);
+      } else {
+        phase_a<true, true>(c, stencils, add);
       }
     }
     if (threads_ == 1) return;
@@ -100,10 +112,32 @@ class ParallelDeposit {
   }
 
  private:
+  /// Phase A of chunk c: every entry outside the shared columns (and inside [0, nx)).
+  template <bool CheckInside, bool CheckShared, class Add>
+  void phase_a(int c, const std::vector<DepositStencil>& stencils, Add& add) const {
+    const int* reach = reach_count_.data();
+    const int nx = nx_;
+    for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
+      const DepositStencil& d = stencils[k];
+      for (int m = 0; m < d.count; ++m) {
+        const int i = d.i[static_cast<std::size_t>(m)];
+        if constexpr (CheckInside) {
+          if (i < 0 || i >= nx) continue;
+        }
+        if constexpr (CheckShared) {
+          if (reach[i] > 1) continue;
+        }
+        add(k, m);
+      }
+    }
+  }
+
   int threads_ = 1;
   int nx_ = 0;
+  bool all_inside_ = true;
   std::vector<std::size_t> chunk_start_;
   std::vector<int> reach_count_, lo_, hi_;
+  std::vector<unsigned char> outside_;  ///< per chunk: a stencil entry outside [0, nx)
   std::vector<std::vector<std::size_t>> deferred_by_chunk_;
 };
 
