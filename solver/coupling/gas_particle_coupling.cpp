@@ -716,17 +716,13 @@ ExchangeTotals GasParticleCoupling::last_exchange(const ParcelSystem& ps) const 
 void GasParticleCoupling::resting_on_slab(const GasSolver& gas, const ParcelSystem& ps) {
   // The whole grid's reference: the last cell of the last slab (-inf elsewhere, so that a max
   // over the ranks gives the last rank's values).
-  gas.resting_gas(resting_);
   constexpr double kNone = -std::numeric_limits<double>::infinity();
   const bool last = halo_->owns_right_boundary();
-  double reference[6] = {last ? (resting_.valid ? 1.0 : 0.0) : kNone,
-                         last ? resting_.p : kNone,
-                         last ? resting_.T : kNone,
-                         last ? resting_.du : kNone,
-                         last ? resting_.dp : kNone,
-                         last ? resting_.dT : kNone};
+  const RestReference own = last ? gas.rest_reference() : RestReference{};
+  double reference[6] = {last ? (own.valid ? 1.0 : 0.0) : kNone, last ? own.p : kNone, last ? own.T : kNone,
+                         last ? own.du : kNone, last ? own.dp : kNone, last ? own.dT : kNone};
   ps.max_over_ranks(reference);
-  GasSolver::RestingGas whole;
+  RestReference whole;
   whole.valid = reference[0] > 0.5;
   whole.p = reference[1];
   whole.T = reference[2];
@@ -767,10 +763,11 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       resting_on_slab(gas, ps);
     }
     // The counts hold for one reference state: a new one starts them again.
-    if (!resting_.valid || resting_.p != rest_p_ || resting_.T != rest_T_) {
+    const RestReference& ref = resting_.reference;
+    if (!ref.valid || ref.p != rest_p_ || ref.T != rest_T_) {
       std::fill(rest_steps, rest_steps + n, 0.0);
-      rest_p_ = resting_.p;
-      rest_T_ = resting_.T;
+      rest_p_ = ref.p;
+      rest_T_ = ref.T;
     }
     // The gas over a parcel's interpolation quad and derivative stencils (two cells each way)
     // rests when every row j-2..j+2 (j its row) rests from column i-2 on (i its column), that
@@ -796,8 +793,8 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       all_rows = std::max(all_rows, t);
     }
     const double* threshold = rest_x_threshold_.data();
-    const bool valid = resting_.valid;
-    const double T_ref = resting_.T, dT = resting_.dT, du = resting_.du;
+    const bool valid = ref.valid;
+    const double T_ref = ref.T, dT = ref.dT, du = ref.du;
     double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelParcels)
     for (std::size_t k = 0; k < n; ++k) {

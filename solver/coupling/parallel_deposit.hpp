@@ -33,11 +33,10 @@ class ParallelDeposit {
     reach_count_.assign(static_cast<std::size_t>(nx), 0);
     lo_.assign(static_cast<std::size_t>(threads), nx);
     hi_.assign(static_cast<std::size_t>(threads), -1);
-    outside_.assign(static_cast<std::size_t>(threads), 0);
-#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
+    bool outside = false;  // a stencil entry outside [0, nx): a slab's, on the neighbour's side
+#pragma omp parallel for schedule(static, 1) num_threads(threads) reduction(|| : outside) if (threads > 1)
     for (int c = 0; c < threads; ++c) {
       int lo = nx, hi = -1;
-      bool outside = false;
       for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
         const DepositStencil& d = stencils[k];
         for (int m = 0; m < d.count; ++m) {
@@ -52,7 +51,6 @@ class ParallelDeposit {
       }
       lo_[static_cast<std::size_t>(c)] = lo;
       hi_[static_cast<std::size_t>(c)] = hi;
-      outside_[static_cast<std::size_t>(c)] = outside ? 1 : 0;
     }
     for (int c = 0; c < threads; ++c) {
       for (int i = lo_[static_cast<std::size_t>(c)]; i <= hi_[static_cast<std::size_t>(c)]; ++i) {
@@ -62,7 +60,7 @@ class ParallelDeposit {
     threads_ = threads;
     nx_ = nx;
     // One rank's stencils all lie in [0, nx): run() then skips the test per entry.
-    all_inside_ = std::find(outside_.begin(), outside_.end(), 1) == outside_.end();
+    all_inside_ = !outside;
     // The parcels that reach a shared column, in parcel order (chunk by chunk).
     deferred_by_chunk_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
@@ -137,7 +135,6 @@ class ParallelDeposit {
   bool all_inside_ = true;
   std::vector<std::size_t> chunk_start_;
   std::vector<int> reach_count_, lo_, hi_;
-  std::vector<unsigned char> outside_;  ///< per chunk: a stencil entry outside [0, nx)
   std::vector<std::vector<std::size_t>> deferred_by_chunk_;
 };
 

@@ -661,7 +661,7 @@ struct GasSolver::Impl {
   }
 
   RestReference rest_reference_of(std::size_t c) const {
-    return rest_reference(u.data()[c], v.data()[c], p.data()[c], T.data()[c], rho.data()[c], config.rest_tolerance);
+    return dustlift::rest_reference(u.data()[c], v.data()[c], p.data()[c], T.data()[c], rho.data()[c], config.rest_tolerance);
   }
 
   void fill_ghosts_parallel() {
@@ -1036,35 +1036,17 @@ void GasSolver::add_column_work(std::vector<double>& per_column) const {
   }
 }
 
-void GasSolver::resting_gas(RestingGas& out) const {
+RestReference GasSolver::rest_reference() const {
   const Impl& m = *impl_;
-  const RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));
+  RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));
   // Under gravity no gas rests: the body force changes every cell's momentum.
-  RestingGas reference;
-  reference.valid = ref.valid && !m.config.has_gravity();
-  reference.p = ref.p;
-  reference.T = ref.T;
-  reference.dT = ref.dT;
-  reference.du = ref.du;
-  reference.dp = ref.dp;
-  resting_gas(out, reference);
+  ref.valid = ref.valid && !m.config.has_gravity();
+  return ref;
 }
 
-void GasSolver::resting_gas(RestingGas& out, const RestingGas& reference) const {
+void GasSolver::resting_gas(RestingGas& out, const RestReference& ref) const {
   const Impl& m = *impl_;
-  RestReference ref;
-  ref.valid = reference.valid;
-  ref.p = reference.p;
-  ref.T = reference.T;
-  ref.du = reference.du;
-  ref.dp = reference.dp;
-  ref.dT = reference.dT;
-  out.valid = reference.valid;
-  out.p = ref.p;
-  out.T = ref.T;
-  out.dT = ref.dT;
-  out.du = ref.du;
-  out.dp = ref.dp;
+  out.reference = ref;
   out.first_resting.resize(static_cast<std::size_t>(m.ny));
   const int cells = m.nx + 2 * m.ng;
 #pragma omp parallel for if (m.threaded) schedule(static)

@@ -15,6 +15,7 @@
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_config.hpp"
+#include "solver/gas/rest_ranges.hpp"
 
 namespace dustlift {
 
@@ -62,17 +63,15 @@ class GasSolver {
   /// cell of the row up to the last ghost rests at it (nx + ghosts when none does). The
   /// coupling skips parcels in such gas exactly (docs/coupling.md).
   struct RestingGas {
-    bool valid = false;
-    double p = 0.0, T = 0.0;
-    double du = 0.0,
-           dT = 0.0;  ///< m/s, K: how far a resting state may be from rest (run.rest_tolerance)
-    double dp = 0.0;  ///< Pa, likewise
+    RestReference reference;  ///< the state and its tolerances (run.rest_tolerance)
     std::vector<int> first_resting;
   };
-  void resting_gas(RestingGas& out) const;
-  /// The same at the state of `reference` (its valid, p, T and tolerances) instead of this
-  /// grid's last cell: a slab of a decomposed run rests at the whole grid's reference.
-  void resting_gas(RestingGas& out, const RestingGas& reference) const;
+  void resting_gas(RestingGas& out) const { resting_gas(out, rest_reference()); }
+  /// The reference alone, without the scan: the cell (nx-1, ny-1)'s (invalid under gravity).
+  RestReference rest_reference() const;
+  /// The scan at `reference` instead of this grid's last cell: a slab of a decomposed run
+  /// rests at the whole grid's reference.
+  void resting_gas(RestingGas& out, const RestReference& reference) const;
 
   /// Adds to per_column[i] (one entry per interior column) the cells of column i the last
   /// stage updated: the work a decomposed run balances (everything without skipping).
