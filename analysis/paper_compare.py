@@ -5,7 +5,8 @@ Usage: /usr/bin/python3 analysis/paper_compare.py RUN_DIR [--json OUT] [--time T
 
 Surface heights: h(x) at the stations, the lifting delay (the rule of
 insitu/lifting_delay.cpp: the distance from the shock back to where h first exceeds the
-undisturbed top by 0.1 mm) and the plateau are taken from the running median of h over
+undisturbed top by 0.1 mm; the median surface at t = 0, or the columns' top for a layer with
+a looser top) and the plateau are taken from the running median of h over
 5 mm of x (20 columns of the paper grid); the delay of the raw columns is given too.
 
 RUN_DIR is an output folder of `dustlift run` (cases/paper/vertical_shock.toml or a study
@@ -75,6 +76,23 @@ def running_median(x, h, width=SMOOTHING):
         if len(w):
             out[k] = np.median(w)
     return out
+
+
+def loose_top_surface(run):
+    """The top of the parcels' columns (particles.layer.y_max) of a run whose layer has a
+    looser top (docs/dem.md, "A looser top"), else None. The sub-cell surface height reads
+    such a top cell as partly filled (-0.10 mm for two half-filled rows of 250 um cells) and
+    the first shock-driven shuffle of its loose parcels fills it, so lifting is measured from
+    the columns' top instead."""
+    path = os.path.join(run, "scene.resolved.toml")
+    if not os.path.exists(path):
+        return None
+    import tomllib
+    with open(path, "rb") as f:
+        layer = tomllib.load(f).get("particles", {}).get("layer", {})
+    if int(layer.get("loose_top_rows", 0)) > 0:
+        return float(layer.get("y_max", 0.0))
+    return None
 
 
 def lifting_delay(x, h, shock_x, top, threshold=LIFT_THRESHOLD):
@@ -269,6 +287,10 @@ def compare(run, t_profile):
     if surface is not None:
         _, _, h0 = profile_at(surface, 0.0)
         top = float(np.median(h0))
+        columns_top = loose_top_surface(run)
+        if columns_top is not None:
+            out["surface_at_t0_mm"] = top * 1e3
+            top = columns_top
         t, x, h_raw = profile_at(surface, t_profile)
         h = running_median(x, h_raw)
         out["profile_time_ms"] = t * 1e3

@@ -54,7 +54,7 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
 
   // The surface profile of the last output, and the undisturbed top: the median height of
   // the first output (t = 0), which is the layer's top to 0.1 cell whatever the arrangement
-  // (a settled bed's lies below the rectangle's y_max).
+  // (a settled bed's lies below the rectangle's y_max), except for a looser top (below).
   std::vector<double> xs, hs, first;
   double layer_top = scene.particles.layer.y_max;
   if (const auto surface = read_if_present(h5, "surface_height"); surface && surface->rows() > 0) {
@@ -68,6 +68,11 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
     }
     std::nth_element(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(first.size() / 2), first.end());
     layer_top = r.layer_top = first[first.size() / 2];
+    // A looser top reads as a partly filled top cell at t = 0 (below y_max), which the first
+    // shuffle of its loose parcels fills: lifting counts from the columns' top instead
+    // (docs/dem.md, "A looser top"; analysis/paper_compare.py does the same).
+    if (scene.particles.layer.loose_top_rows > 0)
+      layer_top = r.layer_top = scene.particles.layer.y_max;
     for (std::size_t s = 0; s < stations.size(); ++s) r.heights[s] = height_at_station(xs, hs, stations[s]);
   }
   // The shock when the surface profile was taken (the last sample at or before it).

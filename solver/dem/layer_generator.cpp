@@ -25,7 +25,8 @@ ParcelInit parcel_of(const DemConfig& cfg, double x, double y, double n_real) {
 void add_generated_layer(const DemConfig& cfg, ParcelSystem& system) {
   const LayerPositions pos = generate_layer(cfg.layer, cfg.parcel_diameter);
   const double area = (cfg.layer.x_max - cfg.layer.x_min) * (cfg.layer.y_max - cfg.layer.y_min);
-  const double n_parcels = static_cast<double>(pos.x.size());
+  // The plan's count: a loose top leaves the rows below at the layer's volume_fraction.
+  const double n_parcels = static_cast<double>(pos.lattice.n_parcels);
   const double n_real = cfg.real_per_parcel > 0.0
                             ? cfg.real_per_parcel
                             : derived_real_per_parcel(cfg.layer.volume_fraction, area, n_parcels,
@@ -68,6 +69,11 @@ std::string describe_layer(const DemConfig& cfg) {
       << plan.pitch_y * 1e6 << " um, nearest centres " << plan_nearest_distance(L, plan) * 1e6 << " um, "
       << plan.n_parcels << " parcels, areal fraction "
       << areal_fraction(static_cast<double>(plan.n_parcels), cfg.parcel_diameter, area);
+    if (L.loose_top_rows > 0) {
+      const auto placed = generate_layer(L, cfg.parcel_diameter).x.size();
+      s << "; loose top: the top " << L.loose_top_rows << " rows at fill " << L.loose_top_fill
+        << ", " << placed << " parcels placed";
+    }
   }
   if (layer_settles(L)) s << "; settled under gravity before t = 0";
   return s.str();

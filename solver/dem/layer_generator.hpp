@@ -15,7 +15,8 @@ namespace dustlift {
 /// The sites of a generated layer: rows x cols, pitch >= parcel diameter.
 /// Hexagonal: even rows (0, 2, ...) hold cols sites, odd rows cols - 1 (shifted by pitch_x / 2).
 struct LayerLattice {
-  std::int64_t n_parcels = 0;    ///< parcels placed
+  /// Parcels placed without a loose top (real_per_parcel is derived from it).
+  std::int64_t n_parcels = 0;
   int rows = 0, cols = 0;
   double pitch_x = 0.0, pitch_y = 0.0;  ///< m (hexagonal: pitch_y is the row spacing)
 };
@@ -42,7 +43,8 @@ LayerLattice plan_layer(const LayerConfig& layer, double parcel_d);
 /// for columnar, whose rows touch): what "no overlap" is checked against.
 double plan_nearest_distance(const LayerConfig& layer, const LayerLattice& plan);
 
-/// Parcel centres of the layer (x, y), row by row from the bottom left.
+/// Parcel centres of the layer (x, y), row by row from the bottom left; the sites of a
+/// loose top (layer_site_kept) left out.
 struct LayerPositions {
   LayerLattice lattice;
   std::vector<double> x, y;

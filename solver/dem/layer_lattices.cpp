@@ -62,6 +62,8 @@ void lattice_positions(const LayerConfig& layer, double parcel_d, LayerPositions
       if (empty[static_cast<std::size_t>(r) * L.cols + c]) continue;
       const double jx = play_x * (uniform_from_seed(state) - 0.5);
       const double jy = play_y * (uniform_from_seed(state) - 0.5);
+      // After the draws: the parcels that stay are where they are without a loose top.
+      if (!layer_site_kept(layer, L.rows, r, c)) continue;
       out.x.push_back(layer.x_min + (c + 0.5) * L.pitch_x + jx);
       out.y.push_back(layer.y_min + (r + 0.5) * L.pitch_y + jy);
     }
@@ -81,6 +83,7 @@ void columnar_positions(const LayerConfig& layer, double parcel_d, LayerPosition
   }
   for (int r = 0; r < L.rows; ++r) {
     for (int c = 0; c < L.cols; ++c) {
+      if (!layer_site_kept(layer, L.rows, r, c)) continue;
       out.x.push_back(layer.x_min + (c + 0.5) * L.pitch_x);
       out.y.push_back(row_y[static_cast<std::size_t>(r)]);
     }
@@ -94,6 +97,7 @@ void hexagonal_positions(const LayerConfig& layer, LayerPositions& out) {
     const bool odd = r % 2 == 1;
     const int sites = odd ? L.cols - 1 : L.cols;
     for (int c = 0; c < sites; ++c) {
+      if (!layer_site_kept(layer, L.rows, r, c)) continue;
       out.x.push_back(layer.x_min + (c + (odd ? 1.0 : 0.5)) * L.pitch_x);
       out.y.push_back(layer.y_min + (r + 0.5) * L.pitch_y);
     }

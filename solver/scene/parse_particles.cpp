@@ -73,7 +73,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   const char* size_key = parcel_diameter_given ? "parcel_diameter" : "diameter";
 
   TableReader lt = t.table("layer");
-  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "arrangement", "settle", "seed", "volume_fraction", "file"});
+  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "arrangement", "settle", "seed",
+                  "volume_fraction", "file", "loose_top_rows", "loose_top_fill"});
   LayerConfig& L = dem.layer;
   L.x_min = lt.number("x_min", L.x_min);
   L.x_max = lt.number("x_max", L.x_max);
@@ -93,6 +94,10 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   double derived = 0.0;
   if (L.arrangement == LayerArrangement::File) {
     if (lt.has("seed")) lt.fail("seed", "not used with arrangement = \"file\"");
+    for (const char* key : {"loose_top_rows", "loose_top_fill"}) {
+      if (lt.has(key))
+        lt.fail(key, "not used with arrangement = \"file\" (thin the file's rows instead)");
+    }
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
     const ParcelFileLimits limits{grid.x.start, grid.x.end, grid.y.start, grid.y.end, dem.particle_diameter,
                                   min_cell_width(grid) * (1.0 + kCellTolerance)};
@@ -123,6 +128,13 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     } catch (const std::invalid_argument& e) {
       lt.fail("volume_fraction", e.what());
     }
+    // A looser top: the top rows keep a share of their sites (docs/dem.md, "A looser top").
+    L.loose_top_rows = static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows));
+    L.loose_top_fill = lt.number("loose_top_fill", 1.0, Range::open_closed(0.0, 1.0));
+    if (L.loose_top_fill != 1.0 && L.loose_top_rows == 0) {
+      lt.fail("loose_top_fill", "needs loose_top_rows > 0 (the rows it thins)");
+    }
+    // From the plan's count: the rows below a loose top hold volume_fraction.
     derived = derived_real_per_parcel(L.volume_fraction, area, static_cast<double>(plan.n_parcels),
                                       dem.particle_diameter);
   }

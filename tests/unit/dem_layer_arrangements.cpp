@@ -194,3 +194,67 @@ TEST(DemLayerArrangements, SettledBedIsLowerDenserInContactAndAtRest) {
   std::printf("settled: %zu grains of 1 mm, top %.3f mm (lattice %.3f mm, rectangle 6 mm), bed fraction %.4f, %zu contacts\n",
               s.size(), top * 1e3, start_top * 1e3, bed_fraction, s.contact_pair_count());
 }
+
+TEST(DemLayerArrangements, LooseTopKeepsEveryOtherColumnOfTheTopRowsOfTheColumnarLayer) {
+  // The paper layer with its top two rows half filled (docs/dem.md, "A looser top"):
+  // 1,503 of 3,005 sites in each (the first, third, ...), the 18 rows below untouched.
+  const LayerConfig full = paper_layer(LayerArrangement::Columnar);
+  LayerConfig loose = full;
+  loose.loose_top_rows = 2;
+  loose.loose_top_fill = 0.5;
+  const LayerPositions F = generate_layer(full, kD), L = generate_layer(loose, kD);
+  EXPECT_EQ(L.lattice.n_parcels, F.lattice.n_parcels) << "the plan, and real_per_parcel, stay";
+  ASSERT_EQ(L.x.size(), 60100u - 2u * 1502u);
+  const std::size_t below = 18u * 3005u;
+  for (std::size_t i = 0; i < below; ++i) {
+    ASSERT_EQ(L.x[i], F.x[i]);
+    ASSERT_EQ(L.y[i], F.y[i]);
+  }
+  for (int row = 0; row < 2; ++row) {
+    for (std::size_t k = 0; k < 1503; ++k) {
+      const std::size_t i = below + static_cast<std::size_t>(row) * 1503 + k;
+      ASSERT_EQ(L.x[i], F.x[below + static_cast<std::size_t>(row) * 3005 + 2 * k])
+          << "row " << 18 + row << " site " << k;
+      ASSERT_EQ(L.y[i], F.y[below + static_cast<std::size_t>(row) * 3005]);
+    }
+  }
+  // The loose rows hold half the areal fraction: the rectangle's is 0.59 (18 + 2 * 1503 / 3005)
+  // / 20.
+  EXPECT_NEAR(fraction_of(L, loose), fraction_of(F, full) * (18.0 + 2.0 * 1503.0 / 3005.0) / 20.0,
+              1e-12);
+}
+
+TEST(DemLayerArrangements, LooseTopThinsOnlyTheTopRowsOfEveryArrangement) {
+  // fill 1/3 of the top three rows: ceil(n / 3) sites of each row's n, evenly spread; the
+  // parcels below are those of the full layer, bit for bit (the jittered lattice draws its
+  // jitter for the left-out sites too).
+  for (LayerArrangement a : {LayerArrangement::Lattice, LayerArrangement::JitteredLattice,
+                             LayerArrangement::Columnar, LayerArrangement::Hexagonal}) {
+    LayerConfig full = paper_layer(a);
+    full.x_max = 0.06;
+    LayerConfig loose = full;
+    loose.loose_top_rows = 3;
+    loose.loose_top_fill = 1.0 / 3.0;
+    const LayerPositions F = generate_layer(full, kD), L = generate_layer(loose, kD);
+    const int rows = F.lattice.rows;
+    // Row boundaries: the full layer's rows are the runs of equal site y (no jitter) or of
+    // site index; count by position instead, as the top 3 rows start at the (rows - 3)-th.
+    const double pitch_y = F.lattice.pitch_y;
+    const double cut =
+        full.y_min + (rows - 3) * pitch_y - 0.01 * kD;  // below row rows-3's lowest jitter
+    std::size_t below_full = 0, below_loose = 0;
+    for (double y : F.y) below_full += y < cut ? 1u : 0u;
+    for (double y : L.y) below_loose += y < cut ? 1u : 0u;
+    ASSERT_EQ(below_loose, below_full) << layer_arrangement_name(a);
+    for (std::size_t i = 0; i < below_full; ++i) {
+      ASSERT_EQ(L.x[i], F.x[i]) << layer_arrangement_name(a);
+      ASSERT_EQ(L.y[i], F.y[i]) << layer_arrangement_name(a);
+    }
+    // Each of the top three rows of the full layer has n sites (lattice: minus the seeded
+    // empty ones); the loose layer keeps a third of them, to within one per row.
+    const double kept = static_cast<double>(L.x.size() - below_loose),
+                 had = static_cast<double>(F.x.size() - below_full);
+    EXPECT_NEAR(kept, had / 3.0, 3.0) << layer_arrangement_name(a);
+    EXPECT_GT(kept, 0.0);
+  }
+}

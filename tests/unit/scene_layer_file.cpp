@@ -153,6 +153,9 @@ TEST(LayerFile, KeysOfGeneratedLayersAreRefusedWithAFileAndTheFileWithoutOne) {
   };
   EXPECT_NE(message({"particles.layer.seed=3"}).find("key 'particles.layer.seed': not used with arrangement = \"file\""),
             std::string::npos);
+  EXPECT_NE(message({"particles.layer.loose_top_rows=2"})
+                .find("key 'particles.layer.loose_top_rows': not used with arrangement = \"file\""),
+            std::string::npos);
   EXPECT_NE(message({"particles.layer.arrangement=columnar"}).find("key 'particles.layer.file': only used with"),
             std::string::npos);
   EXPECT_NE(message({"particles.layer.arrangement=cubic"}).find("\"cubic\" is not one of \"jittered_lattice\""),

@@ -144,3 +144,26 @@ TEST(SceneParticles, InconsistentSettingsAreNamed) {
   EXPECT_NE(error_of("[particles.contact]\ncoulomb = false\nfriction = 0.2\n").find("particles.contact.friction"),
             std::string::npos);
 }
+
+TEST(SceneParticles, LooseTopIsParsedAndItsMistakesAreNamed) {
+  const Scene s = parse(
+      "[particles.layer]\narrangement = \"columnar\"\nloose_top_rows = 2\nloose_top_fill = 0.5\n");
+  EXPECT_EQ(s.particles.layer.loose_top_rows, 2);
+  EXPECT_EQ(s.particles.layer.loose_top_fill, 0.5);
+  // real_per_parcel as without the loose top: the rows below hold the volume fraction.
+  const Scene full = parse("[particles.layer]\narrangement = \"columnar\"\n");
+  EXPECT_EQ(s.particles.real_per_parcel, full.particles.real_per_parcel);
+  const std::string rows =
+      error_of("[particles.layer]\narrangement = \"columnar\"\nloose_top_rows = 21\n");
+  EXPECT_NE(rows.find("particles.layer.loose_top_rows"), std::string::npos) << rows;
+  EXPECT_NE(rows.find("[0, 20]"), std::string::npos)
+      << rows << " (the columnar paper layer has 20 rows)";
+  for (const char* fill : {"0", "1.5", "-0.5"}) {
+    const std::string e = error_of(
+        std::string("[particles.layer]\nloose_top_rows = 1\nloose_top_fill = ") + fill + "\n");
+    EXPECT_NE(e.find("particles.layer.loose_top_fill"), std::string::npos) << e;
+  }
+  const std::string alone = error_of("[particles.layer]\nloose_top_fill = 0.5\n");
+  EXPECT_NE(alone.find("particles.layer.loose_top_fill"), std::string::npos) << alone;
+  EXPECT_NE(alone.find("loose_top_rows"), std::string::npos) << alone;
+}

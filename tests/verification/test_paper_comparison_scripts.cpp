@@ -127,8 +127,53 @@ TEST(PaperComparisonScripts, MeasureAReducedPaperRunAsTheCodeDefinesIt) {
   const std::string numbers = read_file(docs / "numbers.md");
   EXPECT_NE(numbers.find("| shock position at 0.6 ms | 290 mm |"), std::string::npos) << numbers;
   EXPECT_NE(numbers.find("not run"), std::string::npos) << numbers;  // the studies are missing
-  for (const char* png : {"fig5.png", "fig6.png", "fig7.png", "packing.png", "fig10.png", "fig12.png"})
+  for (const char* png : {"fig5.png", "fig6.png", "fig7.png", "packing.png", "fig10.png",
+                          "fig12.png", "loosetop.png"})
     EXPECT_TRUE(fs::exists(docs / png)) << png;
+  fs::remove_all(dir);
+}
+
+TEST(PaperComparisonScripts, LooseTopLayerIsMeasuredFromItsColumnsTopByBothRules) {
+  // The reduced paper scene with its top two rows half filled (docs/dem.md, "A looser top"):
+  // the t = 0 surface reads the half-filled top cell 0.1 mm below the columns' top; both the
+  // Python comparison and the C++ sweep summary measure lifting from the columns' top, y = 0.
+  const fs::path dir = testing::fresh_dir("paper_compare_loose");
+  std::string scene =
+      read_file(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock.toml");
+  replace_all(scene, "x_min = 0.100", "x_min = 0.010");
+  replace_all(scene, "x_max = 0.200", "x_max = 0.030");
+  const fs::path scene_path = dir / "reduced_paper.toml";
+  std::ofstream(scene_path) << scene;
+  const fs::path out = dir / "loosetop";
+  const std::string sets =
+      " --set grid.x.start=-0.02 --set grid.x.end=0.04 --set grid.x.cells_below=20 --set "
+      "particles.layer.x_max=0.04"
+      " --set grid.y.end=0.012 --set grid.y.uniform_end=0.008 --set grid.y.cells_above=8"
+      " --set initial.position=-0.001 --set run.end_time=4e-5 --set output.interval=2e-5"
+      " --set particles.layer.loose_top_rows=2 --set particles.layer.loose_top_fill=0.5";
+  const auto [status, log] = run(std::string(DUSTLIFT_BINARY) + " run " + scene_path.string() +
+                                 sets + " --out " + out.string() + " --threads 2");
+  ASSERT_EQ(status, 0) << log;
+  EXPECT_NE(log.find("loose top: the top 2 rows at fill 0.5, 5720 parcels placed"),
+            std::string::npos)
+      << log << " (20 rows x 301 columns, 150 sites left out in each of the top two)";
+  const fs::path json_path = dir / "compare.json";
+  const auto [cstatus, coutput] =
+      run("/usr/bin/python3 " + std::string(DUSTLIFT_SOURCE_DIR) + "/analysis/paper_compare.py " +
+          out.string() + " --time 4e-5 --json " + json_path.string());
+  ASSERT_EQ(cstatus, 0) << coutput;
+  const std::string json = read_file(json_path);
+  EXPECT_NEAR(json_number(json, "surface_at_t0_mm"), -0.1, 0.01) << json;
+  EXPECT_EQ(json_number(json, "layer_top_mm"), 0.0) << json;
+  const Scene resolved = load_scene((out / "scene.resolved.toml").string());
+  const RunResults cpp = summarise_run(out.string(), resolved, {}, 1e-4);
+  EXPECT_EQ(cpp.layer_top, 0.0);
+  const double py_delay = json_number(json, "lifting_delay_raw_mm");
+  if (std::isnan(cpp.lifting_delay)) {
+    EXPECT_TRUE(std::isnan(py_delay)) << json;
+  } else {
+    EXPECT_NEAR(py_delay, cpp.lifting_delay * 1e3, 1e-6) << json;
+  }
   fs::remove_all(dir);
 }
 
