@@ -275,33 +275,60 @@ def band_series(outroot, name, band):
     return paper_compare.series(os.path.join(outroot, name), "forces_" + band)
 
 
+BAND_FORCES = (("contact_window_y_N", "contact", "k"), ("drag_y_N", "drag", "tab:blue"),
+               ("pressure_y_N", "pressure", "tab:green"), ("magnus_y_N", "Magnus", "tab:red"))
+# What the paper states of its surface band's vertical forces (section 3.4): (value µN, time ms, colour)
+PAPER_SURFACE_FORCES = ((80, 0.01, "k"), (-20, 0.005, "tab:blue"), (-10, 0.005, "tab:green"), (8, 0.1, "tab:red"))
+
+
+def band_panel(ax, outroot, runs, name, band, title, paper_marks=False):
+    """The vertical forces on one band of one run, 0.01 ms means (thick) and 1 µs bins (thin)."""
+    b = band_series(outroot, name, band) if runs.get(name) else None
+    if b is None:
+        ax.set_title(f"{name}: not run")
+        return
+    tau, n = b["tau_s"], b["samples_1"]
+    for column, lab, c in BAND_FORCES:
+        t, v = paper_compare.windowed(tau, n, b[column], paper_compare.WINDOW)
+        ax.plot(t * 1e3, v * 1e6, c, label=lab + " (0.01 ms mean)")
+        if column != "contact_window_y_N":
+            ax.plot(tau * 1e3, b[column] * 1e6, c, lw=0.4, alpha=0.5)
+    if paper_marks:
+        for value, at, c in PAPER_SURFACE_FORCES:
+            ax.plot([at], [value], marker="*", ms=9, color=c, ls="none", mec="w", mew=0.5)
+    ax.axhline(0, color="0.5", lw=0.5)
+    ax.set_xlim(0, 0.3)
+    ax.set_ylim(-100, 200)
+    ax.set_title(title, fontsize=9)
+    ax.set_ylabel("force per parcel (µN)")
+    ax.grid(alpha=0.3)
+
+
 def fig10(outroot, runs, docs):
     fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
     for col, name in enumerate(("paper", "jittered")):
         for row, band in enumerate(("surface", "middle")):
-            ax = axes[row][col]
-            b = band_series(outroot, name, band) if runs.get(name) else None
-            if b is None:
-                ax.set_title(f"{name}: not run")
-                continue
-            tau, n = b["tau_s"], b["samples_1"]
-            for column, lab, c in (("contact_window_y_N", "contact", "k"), ("drag_y_N", "drag", "tab:blue"),
-                                   ("pressure_y_N", "pressure", "tab:green"), ("magnus_y_N", "Magnus", "tab:red")):
-                t, v = paper_compare.windowed(tau, n, b[column], paper_compare.WINDOW)
-                ax.plot(t * 1e3, v * 1e6, c, label=lab + " (0.01 ms mean)")
-                if column != "contact_window_y_N":
-                    ax.plot(tau * 1e3, b[column] * 1e6, c, lw=0.4, alpha=0.5)
-            ax.axhline(0, color="0.5", lw=0.5)
-            ax.set_xlim(0, 0.3)
-            ax.set_ylim(-100, 200)
-            ax.set_title(f"{'columnar (adopted)' if name == 'paper' else 'jittered'}: {band} band, vertical forces",
-                         fontsize=9)
-            ax.set_ylabel("force per parcel (µN)")
-            ax.grid(alpha=0.3)
+            label = "columnar (adopted)" if name == "paper" else "jittered"
+            band_panel(axes[row][col], outroot, runs, name, band, f"{label}: {band} band, vertical forces")
             if row == 1:
-                ax.set_xlabel("time since shock arrival (ms)")
+                axes[row][col].set_xlabel("time since shock arrival (ms)")
     axes[0][0].legend(fontsize=7)
     save(fig, docs, "fig10.png")
+
+
+def loose_top_figure(outroot, runs, docs):
+    """The surface band's vertical forces with the columns' top as built and with its top two
+    rows half filled (docs/results.md section 5), the paper's stated values as stars."""
+    names = (("paper", "columnar (adopted)"), ("loosetop", "top two rows half filled"),
+             ("loosetop_xi2_none", "half-filled top, no crowding factor ξ₂"))
+    fig, axes = plt.subplots(2, 3, figsize=(15, 7), sharex=True)
+    for col, (name, label) in enumerate(names):
+        for row, band in enumerate(("surface", "middle")):
+            band_panel(axes[row][col], outroot, runs, name, band, f"{label}: {band} band", paper_marks=row == 0)
+            if row == 1:
+                axes[row][col].set_xlabel("time since shock arrival (ms)")
+    axes[0][0].legend(fontsize=7, title="stars: the paper's stated values", title_fontsize=7)
+    save(fig, docs, "loosetop.png")
 
 
 def fig12(outroot, runs, docs):
@@ -407,6 +434,7 @@ def main(argv):
                                                                  "columnar (adopted)"], "layer structure, C_LM = 1")
     save(fig, a.docs, "packing.png")
     fig10(a.outroot, runs, a.docs)
+    loose_top_figure(a.outroot, runs, a.docs)
     fig12(a.outroot, runs, a.docs)
     fig9_13(a.outroot, runs, a.docs)
     fig8d(runs, a.docs)
@@ -424,7 +452,10 @@ def main(argv):
         f.write(readings_table(runs, ["paper", "jittered", "hexagonal", "cap03", "proxy_paper", "proxy_jittered_clm1",
                                       "proxy_hexagonal", "proxy_nocoulomb", "proxy_cap03", "proxy_xi2_linear",
                                       "proxy_xi2_none", "proxy_nodrag", "xi2_none", "proxy_nodegrid", "nodegrid", "influence250",
-                                      "proxy_nodegrid_cap03", "proxy_nodegrid_linear", "proxy_nodegrid_none"]))
+                                      "proxy_nodegrid_cap03", "proxy_nodegrid_linear", "proxy_nodegrid_none",
+                                      "loosetop", "loosetop_xi2_none", "proxy_loosetop", "proxy_loosetop_xi2_none",
+                                      "proxy_loosetop_xi2_linear", "proxy_loosetop1", "proxy_loosetop1_xi2_linear",
+                                      "proxy_loosetop1_xi2_none"]))
     print("wrote", os.path.join(a.docs, "numbers.md"))
     with open(os.path.join(a.docs, "runs.md"), "w") as f:
         f.write("<!-- written by analysis/paper_results.py; do not edit -->\n| run | wall (s) | steps | log |\n"

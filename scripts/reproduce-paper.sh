@@ -73,6 +73,14 @@ runs=(
   "proxy_nodegrid_linear|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875 coupling.volume_fraction_correction=linear"
   "proxy_nodegrid_none|proxy|grid.y.uniform_start=-0.001875 grid.y.cells_below=1 grid.y.uniform_end=0.011875 coupling.volume_fraction_correction=none"
   "proxy_kn500k_clm1|proxy|particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
+  "loosetop|paper|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5"
+  "loosetop_xi2_none|paper|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=none"
+  "proxy_loosetop|proxy|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5"
+  "proxy_loosetop_xi2_none|proxy|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=none"
+  "proxy_loosetop_xi2_linear|proxy|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=linear"
+  "proxy_loosetop1|proxy|particles.layer.loose_top_rows=1 particles.layer.loose_top_fill=0.5"
+  "proxy_loosetop1_xi2_linear|proxy|particles.layer.loose_top_rows=1 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=linear"
+  "proxy_loosetop1_xi2_none|proxy|particles.layer.loose_top_rows=1 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=none"
 )
 
 if [ "$list" = 1 ]; then
