@@ -123,14 +123,6 @@ def table(runs):
     a, j = runs.get("paper"), runs.get("jittered")
     rows = []
 
-    def row(what, paper_text, paper_value, kind, fn, unit="", cause=None):
-        """cause: a function of the runs giving the text of section 5's explanation, with the
-        number of the run that shows it; printed where the adopted layer's verdict is off."""
-        oa, oj = fn(a), fn(j)
-        va = verdict(oa, paper_value, kind)
-        why = cause() if cause is not None and va.startswith("off") else ""
-        rows.append((what, paper_text, fmt(oa) + unit, fmt(oj) + unit, va, verdict(oj, paper_value, kind), why))
-
     def of(name, *path):
         return fmt(get(runs.get(name), *path))
 
@@ -179,10 +171,14 @@ def table(runs):
             of("jittered", "surface", "gas_over_particle_rotation_0p1ms") + ", `loosetop` " +
             of("loosetop", "surface", "gas_over_particle_rotation_0p1ms")),
     }
-    plain_row = row
 
-    def row(what, *args, **kwargs):  # noqa: F811  (the causes table attached by quantity)
-        plain_row(what, *args, cause=causes.get(what), **kwargs)
+    def row(what, paper_text, paper_value, kind, fn, unit=""):
+        """One quantity: ours on both layers, the verdicts, and where the adopted layer's is
+        off the cause of section 5 (causes above) with the number of the run that shows it."""
+        oa, oj = fn(a), fn(j)
+        va = verdict(oa, paper_value, kind)
+        why = causes[what]() if what in causes and va.startswith("off") else ""
+        rows.append((what, paper_text, fmt(oa) + unit, fmt(oj) + unit, va, verdict(oj, paper_value, kind), why))
 
     row("shock position at 0.6 ms", "290 mm", 290.0, "rel", lambda r: get(r, "shock_x_mm"), " mm")
     row("lifting delay distance, h = 0.10 mN s/m, C_LM = 1", "< 100 mm (shorter than at h > 0.3)", 100.0, "max",

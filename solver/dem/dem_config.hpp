@@ -4,7 +4,6 @@
 // default below is also written into the resolved scene. Paper values: Table 2 and
 // physics-reference.md §3.6–§4; the garbled or missing items are documented in docs/dem.md.
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -72,15 +71,6 @@ struct LayerConfig {
   int loose_top_rows = 0;
   double loose_top_fill = 1.0;
 };
-
-/// Whether site `column` of row `row` (of `rows`, counted from the floor) holds a parcel:
-/// every site below the loose top rows; in them ceil((column + 1) f) > ceil(column f), which
-/// keeps the first site and ceil(n f) of any n sites, evenly spread (f = 1/2: every other).
-inline bool layer_site_kept(const LayerConfig& layer, int rows, int row, int column) {
-  if (layer.loose_top_rows <= 0 || row < rows - layer.loose_top_rows) return true;
-  const double f = layer.loose_top_fill;
-  return std::ceil((column + 1) * f) > std::ceil(column * f);
-}
 
 /// Whether the layer is settled under gravity before t = 0 (`settle`, or arrangement = settled).
 inline bool layer_settles(const LayerConfig& layer) {

@@ -43,6 +43,11 @@ LayerLattice plan_layer(const LayerConfig& layer, double parcel_d);
 /// for columnar, whose rows touch): what "no overlap" is checked against.
 double plan_nearest_distance(const LayerConfig& layer, const LayerLattice& plan);
 
+/// Whether site `column` of row `row` (of `rows`, counted from the floor) holds a parcel:
+/// every site below the loose top rows; in them ceil((column + 1) f) > ceil(column f), which
+/// keeps the first site and ceil(n f) of any n sites, evenly spread (f = 1/2: every other).
+bool layer_site_kept(const LayerConfig& layer, int rows, int row, int column);
+
 /// Parcel centres of the layer (x, y), row by row from the bottom left; the sites of a
 /// loose top (layer_site_kept) left out.
 struct LayerPositions {

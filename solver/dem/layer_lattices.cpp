@@ -210,6 +210,12 @@ double plan_nearest_distance(const LayerConfig& layer, const LayerLattice& plan)
   return std::min({px, diagonal, same_column});
 }
 
+bool layer_site_kept(const LayerConfig& layer, int rows, int row, int column) {
+  if (layer.loose_top_rows <= 0 || row < rows - layer.loose_top_rows) return true;
+  const double f = layer.loose_top_fill;
+  return std::ceil((column + 1) * f) > std::ceil(column * f);
+}
+
 LayerPositions generate_layer(const LayerConfig& layer, double parcel_d) {
   LayerPositions out;
   out.lattice = plan_layer(layer, parcel_d);
