@@ -8,9 +8,13 @@
 
 namespace dustlift {
 
-void ShockTrajectory::record(double time, double shock_x) {
+void ShockTrajectory::record(double time, double shock_x, double max_advance) {
   if (std::isnan(shock_x)) return;
   if (!times_.empty() && time < times_.back()) throw std::invalid_argument("ShockTrajectory: time went back");
+  if (!reaches_.empty() && shock_x > reaches_.back() + max_advance) {
+    ++ignored_jumps_;
+    return;
+  }
   if (reaches_.empty() || shock_x > reaches_.back()) {
     times_.push_back(time);
     reaches_.push_back(shock_x);

@@ -7,6 +7,7 @@
 // windows (0.01 ms by default). Serial, fixed-order sums: reproducible bit for bit.
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -53,7 +54,13 @@ struct BandAverageOptions {
 class ShockTrajectory {
  public:
   /// Adds a sample; NaN positions (no shock found) are ignored. Times must not decrease.
-  void record(double time, double shock_x);
+  /// A position more than `max_advance` (m) beyond the reach is ignored too and counted: a
+  /// shock sampled every step moves less than a cell per step (CFL <= 1), so such a jump is a
+  /// pressure pulse ahead of it, which would date every arrival beyond it early.
+  void record(double time, double shock_x,
+              double max_advance = std::numeric_limits<double>::infinity());
+  /// Samples ignored as jumps beyond max_advance.
+  std::size_t ignored_jumps() const { return ignored_jumps_; }
   double arrival_time(double x0) const;
   /// Farthest position reached (NaN before the first sample).
   double reach() const;
@@ -65,6 +72,7 @@ class ShockTrajectory {
 
  private:
   std::vector<double> times_, reaches_;  ///< reaches_ strictly increasing
+  std::size_t ignored_jumps_ = 0;
 };
 
 /// Fills arrival_time[k] = trajectory.arrival_time(initial_x[k]) for the parcels whose

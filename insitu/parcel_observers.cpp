@@ -1,6 +1,7 @@
 // Observers over parcel arrays: the .vtp writer and the band-averaged force series.
 // The parcel system is reached through adaptor functions (StateView -> array views), so
 // these compile and are tested without the DEM module.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -137,7 +138,7 @@ class BandForceObserver final : public Observer {
                                           options_.shock.p_ambient, options_.shock.threshold,
                                           options_.shock.y_min);
     BandParcelsView parcels = parcels_of_(view);
-    trajectory_.record(view.time, shock_x);
+    trajectory_.record(view.time, shock_x, max_shock_advance());
     arrival_.resize(parcels.count);
     band_arrival_times(trajectory_, options_.bands, parcels.initial_position.x, parcels.initial_position.y,
                        arrival_);
@@ -146,6 +147,23 @@ class BandForceObserver final : public Observer {
     sampled_ = true;
     last_time_ = view.time;
   }
+  /// How far beyond its reach a sampled shock may stand: kMaxShockAdvanceCells of the
+  /// widest of the two cells after the reach when sampled every step (the shock moves less
+  /// than one per step), no limit when sampled at outputs only.
+  double max_shock_advance() const {
+    const double reach = trajectory_.reach();
+    if (!options_.sample_every_step || std::isnan(reach) || x_centers_.size() < 3)
+      return std::numeric_limits<double>::infinity();
+    const auto at =
+        std::upper_bound(x_centers_.begin(), x_centers_.end(), reach) - x_centers_.begin();
+    const std::size_t i =
+        std::clamp<std::size_t>(static_cast<std::size_t>(at), 1, x_centers_.size() - 2);
+    const double width =
+        std::max(x_centers_[i] - x_centers_[i - 1], x_centers_[i + 1] - x_centers_[i]);
+    return kMaxShockAdvanceCells * width;
+  }
+  static constexpr double kMaxShockAdvanceCells = 8.0;
+
   BandForceOptions options_;
   BandParcelsOf parcels_of_;
   BandForceSeries series_;

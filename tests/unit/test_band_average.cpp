@@ -147,5 +147,18 @@ TEST(BandAverage, ArrivalIsTheFirstSampleWhenTheShockStoodAtOrBeyondTheInitialX)
   EXPECT_THROW(t.record(0.0, 0.5), std::invalid_argument);
 }
 
+TEST(BandAverage, PositionsJumpingBeyondTheAllowedAdvanceAreIgnoredAndCounted) {
+  ShockTrajectory t;
+  t.record(1e-6, 0.100, 0.002);  // the first sample: no reach to compare with
+  t.record(2e-6, 0.101, 0.002);
+  t.record(3e-6, 0.180, 0.002);  // a pulse 79 mm ahead: ignored
+  t.record(4e-6, 0.1025, 0.002);
+  t.record(5e-6, 0.1045, 0.002);  // 2 mm beyond the reach: still a shock
+  EXPECT_EQ(t.ignored_jumps(), 1u);
+  EXPECT_EQ(t.reach(), 0.1045);
+  EXPECT_EQ(t.arrival_time(0.102), 4e-6);
+  EXPECT_EQ(t.times().size(), 4u);
+}
+
 }  // namespace
 }  // namespace dustlift

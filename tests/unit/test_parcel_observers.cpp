@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <sstream>
 
@@ -20,10 +21,18 @@ namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("parcel_observers_" + name, false); }
 
-/// 10 x 2 cells of 1 cm; pressure 2e5 behind a step at xs, 1e5 ahead.
+/// Faces of `cells` cells of 1 cm from x = 0.
+std::vector<double> centimetre_faces(int cells) {
+  std::vector<double> faces;
+  for (int i = 0; i <= cells; ++i) faces.push_back(0.01 * i);
+  return faces;
+}
+
+/// cells x 2 cells of 1 cm (10 by default); pressure 2e5 behind a step at xs, 1e5 ahead.
 struct Gas {
-  Grid2D grid{Axis({0.0, 0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1}, 2),
-              Axis({0.0, 0.01, 0.02}, 2)};
+  explicit Gas(int cells = 10)
+      : grid(Axis(centimetre_faces(cells), 2), Axis({0.0, 0.01, 0.02}, 2)) {}
+  Grid2D grid;
   Field2D rho{grid, 1.2}, u{grid}, v{grid}, p{grid, 1e5}, T{grid, 300.0}, alpha_g{grid, 1.0};
   void step_at(double xs) {
     for (int j = 0; j < grid.ny(); ++j)
@@ -64,27 +73,36 @@ TEST(ParcelObservers, VtkParcelWriterWritesOneFilePerOutputThroughTheAdaptor) {
   EXPECT_FALSE(fs::exists(dir / "vtk" / "parcels_000002.vtp"));
 }
 
+/// Three parcels with fixed drag forces, seen by a band-force observer whose band holds
+/// initial positions 0 <= x0 < band_x_max, 0 <= y0 < 2 mm; 1 us bins centred on whole
+/// microseconds.
+struct BandParcels {
+  std::vector<double> x0, y0, y, drag_x{0.0, 0.0, 0.0}, drag_y{1.0, 5.0, 100.0};
+  std::unique_ptr<Observer> observer(double band_x_max) {
+    BandForceOptions options;
+    options.bands = {Band{"layer", 0.0, band_x_max, 0.0, 0.002}};
+    options.averaging.bin_width = 1e-6;
+    options.averaging.tau_min = -0.5e-6;
+    options.averaging.tau_max = 20.5e-6;
+    options.averaging.contact_window = 1e-5;
+    options.shock.p_ambient = 1e5;
+    return make_band_force_observer(options, [this](const StateView&) {
+      BandParcelsView v;
+      v.count = 3;
+      v.initial_position = {x0, y0};
+      v.y = y;
+      v.force_drag = {drag_x, drag_y};
+      return v;
+    });
+  }
+};
+
 TEST(ParcelObservers, BandForcesAlignedToTheShockArrivalFoundEachStep) {
   const auto dir = fresh_dir("bands");
   Gas gas;
   // Parcel A starts at x0 = 12 mm, B at 32 mm (both in the band), C at 52 mm above it.
-  std::vector<double> x0{0.012, 0.032, 0.052}, y0{0.001, 0.001, 0.005}, y{0.001, 0.002, 0.005};
-  std::vector<double> drag_x{0.0, 0.0, 0.0}, drag_y{1.0, 5.0, 100.0};
-  BandForceOptions options;
-  options.bands = {Band{"layer", 0.0, 0.1, 0.0, 0.002}};
-  options.averaging.bin_width = 1e-6;
-  options.averaging.tau_min = -0.5e-6;  // bins centred on whole microseconds
-  options.averaging.tau_max = 20.5e-6;
-  options.averaging.contact_window = 1e-5;
-  options.shock.p_ambient = 1e5;
-  auto observer = make_band_force_observer(options, [&](const StateView&) {
-    BandParcelsView v;
-    v.count = 3;
-    v.initial_position = {x0, y0};
-    v.y = y;
-    v.force_drag = {drag_x, drag_y};
-    return v;
-  });
+  BandParcels parcels{{0.012, 0.032, 0.052}, {0.001, 0.001, 0.005}, {0.001, 0.002, 0.005}};
+  auto observer = parcels.observer(0.1);
   // Step m at t = m us, shock at xs = 10 mm * m + 1 mm: the filter reports
   // 10 mm * m + 4.5 mm, so A arrives at m = 1 and B at m = 3.
   for (int m = 0; m < 10; ++m) {
@@ -105,6 +123,34 @@ TEST(ParcelObservers, BandForcesAlignedToTheShockArrivalFoundEachStep) {
     EXPECT_EQ(table.column(6)[r], r <= 6 ? 3.0 : 1.0);  // drag_y
   }
   EXPECT_TRUE(fs::exists(dir / "series" / "forces_layer.csv"));
+}
+
+TEST(ParcelObservers, PressurePulseFarAheadOfTheShockDoesNotDateTheArrivalsEarly) {
+  // As above on 40 cells, with a 1.5 p0 pulse in the cell at 205 mm at steps 2 and 6: the
+  // shock cannot move 8 cells in a step, so the pulse is not a shock position. Counted
+  // from it, A (12 mm) and B (32 mm) would both have arrived at step 2 and C (182 mm) too.
+  const auto dir = fresh_dir("bands_pulse");
+  Gas gas(40);
+  BandParcels parcels{{0.012, 0.032, 0.182}, {0.001, 0.001, 0.001}, {0.001, 0.002, 0.001}};
+  auto observer = parcels.observer(0.4);
+  for (int m = 0; m < 10; ++m) {
+    gas.step_at(0.01 * m + 0.001);
+    if (m == 2 || m == 6) {
+      for (int j = 0; j < gas.grid.ny(); ++j) gas.p(20, j) = 1.5e5;
+    }
+    const StateView view = gas.view(m * 1e-6, dir);
+    if (m == 0) observer->on_start(view);
+    observer->on_step(view);
+  }
+  observer->on_finish(gas.view(9e-6, dir));
+  const auto table = read_series_h5((dir / "series" / "series.h5").string(), "forces_layer");
+  // The same bins as without the pulse: A from step 1, B from step 3, C never.
+  ASSERT_EQ(table.rows(), 9u);
+  for (std::size_t r = 0; r < 9; ++r) {
+    SCOPED_TRACE("row " + std::to_string(r));
+    EXPECT_EQ(table.column(1)[r], r <= 6 ? 2.0 : 1.0);
+    EXPECT_EQ(table.column(6)[r], r <= 6 ? 3.0 : 1.0);  // drag_y
+  }
 }
 
 }  // namespace
