@@ -508,7 +508,7 @@ def main(argv):
                                       "proxy_nodegrid_cap03", "proxy_nodegrid_linear", "proxy_nodegrid_none",
                                       "loosetop", "loosetop_xi2_none", "proxy_loosetop", "proxy_loosetop_xi2_none",
                                       "proxy_loosetop_xi2_linear", "proxy_loosetop1", "proxy_loosetop1_xi2_linear",
-                                      "proxy_loosetop1_xi2_none"]))
+                                      "proxy_loosetop1_xi2_none", "proxy_centre_in_cell"]))
     print("wrote", os.path.join(a.docs, "numbers.md"))
     with open(os.path.join(a.docs, "runs.md"), "w") as f:
         f.write("<!-- written by analysis/paper_results.py; do not edit -->\n| run | wall (s) | steps | log |\n"

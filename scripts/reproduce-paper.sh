@@ -81,6 +81,7 @@ runs=(
   "proxy_loosetop1|proxy|particles.layer.loose_top_rows=1 particles.layer.loose_top_fill=0.5"
   "proxy_loosetop1_xi2_linear|proxy|particles.layer.loose_top_rows=1 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=linear"
   "proxy_loosetop1_xi2_none|proxy|particles.layer.loose_top_rows=1 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=none"
+  "proxy_centre_in_cell|proxy|coupling.influence_width=0"
 )
 
 if [ "$list" = 1 ]; then
