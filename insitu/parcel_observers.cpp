@@ -1,6 +1,8 @@
 // Observers over parcel arrays: the .vtp writer and the band-averaged force series.
 // The parcel system is reached through adaptor functions (StateView -> array views), so
 // these compile and are tested without the DEM module.
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -95,6 +97,16 @@ class BandForceObserver final : public Observer {
   void on_output(const StateView& view) override {
     sample(view);
     write(view);
+  }
+  void on_finish(const StateView& view) override {
+    on_output(view);
+    if (trajectory_.ignored_jumps() > 0) {
+      fmt::print(
+          stderr,
+          "band filter: {} shock positions ignored, each more than {:g} cells beyond the farthest "
+          "one (pressure pulses ahead of the shock, docs/output.md)\n",
+          trajectory_.ignored_jumps(), kMaxShockAdvanceCells);
+    }
   }
 
   std::string state_key() const override { return "bands"; }
