@@ -506,7 +506,8 @@ def main(argv):
                                       "proxy_hexagonal", "proxy_nocoulomb", "proxy_cap03", "proxy_xi2_linear",
                                       "proxy_xi2_none", "proxy_nodrag", "xi2_none", "proxy_nodegrid", "nodegrid", "influence250",
                                       "proxy_nodegrid_cap03", "proxy_nodegrid_linear", "proxy_nodegrid_none",
-                                      "loosetop", "loosetop_xi2_none", "proxy_loosetop", "proxy_loosetop_xi2_none",
+                                      "loosetop", "loosetop_xi2_none", "loosetop_xi2_linear", "loosetop_clm0",
+                                      "proxy_loosetop", "proxy_loosetop_xi2_none",
                                       "proxy_loosetop_xi2_linear", "proxy_loosetop1", "proxy_loosetop1_xi2_linear",
                                       "proxy_loosetop1_xi2_none", "proxy_centre_in_cell"]))
     print("wrote", os.path.join(a.docs, "numbers.md"))

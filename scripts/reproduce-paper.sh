@@ -75,6 +75,8 @@ runs=(
   "proxy_kn500k_clm1|proxy|particles.contact.k_n=5.0e5 particles.contact.k_t=1000"
   "loosetop|paper|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5"
   "loosetop_xi2_none|paper|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=none"
+  "loosetop_xi2_linear|paper|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=linear"
+  "loosetop_clm0|paper|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.magnus_coefficient=0"
   "proxy_loosetop|proxy|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5"
   "proxy_loosetop_xi2_none|proxy|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=none"
   "proxy_loosetop_xi2_linear|proxy|particles.layer.loose_top_rows=2 particles.layer.loose_top_fill=0.5 coupling.volume_fraction_correction=linear"
