@@ -483,8 +483,9 @@ def main(argv):
     profile_panel(axes[1], runs, ["grid500", "parcel200"], ["parcels of 100 µm", "200 µm"], "Fig. 7b (Δx = 500 µm)")
     save(fig, a.docs, "fig7.png")
     fig, ax = plt.subplots(figsize=(6, 4))
-    profile_panel(ax, runs, ["jittered", "hexagonal", "paper"], ["jittered lattice (before)", "hexagonal",
-                                                                 "columnar (adopted)"], "layer structure, C_LM = 1")
+    profile_panel(ax, runs, ["jittered", "hexagonal", "paper", "loosetop"],
+                  ["jittered lattice (before)", "hexagonal", "columnar (adopted)", "columnar, top two rows half filled"],
+                  "layer structure, C_LM = 1")
     save(fig, a.docs, "packing.png")
     fig10(a.outroot, runs, a.docs)
     loose_top_figure(a.outroot, runs, a.docs)
