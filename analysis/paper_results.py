@@ -167,7 +167,7 @@ def table(runs):
             "closure in the layer's bulk: `proxy_xi2_linear` " + of("proxy_xi2_linear", "middle", "pressure_down_10us_uN") +
             " µN, `xi2_none` " + of("xi2_none", "middle", "pressure_down_10us_uN") + " µN"),
         "gas / particle rotation at 0.1 ms (surface band)": lambda: (
-            "surface parcels roll on the full row beneath: jittered " +
+            "the particles' spin comes from contact with the parcels beneath: jittered " +
             of("jittered", "surface", "gas_over_particle_rotation_0p1ms") + ", `loosetop` " +
             of("loosetop", "surface", "gas_over_particle_rotation_0p1ms")),
     }
