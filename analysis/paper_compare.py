@@ -32,6 +32,7 @@ import math
 import os
 import re
 import sys
+import tomllib
 
 import numpy as np
 
@@ -87,7 +88,6 @@ def loose_top_surface(run):
     path = os.path.join(run, "scene.resolved.toml")
     if not os.path.exists(path):
         return None
-    import tomllib
     with open(path, "rb") as f:
         layer = tomllib.load(f).get("particles", {}).get("layer", {})
     if int(layer.get("loose_top_rows", 0)) > 0:

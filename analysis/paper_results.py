@@ -370,8 +370,9 @@ def fig10(outroot, runs, docs):
 
 
 def loose_top_figure(outroot, runs, docs):
-    """The surface band's vertical forces with the columns' top as built and with its top two
-    rows half filled (docs/results.md section 5), the paper's stated values as stars."""
+    """The surface and middle bands' vertical forces with the columns' top as built and with
+    its top two rows half filled (docs/results.md section 5); the paper's stated surface-band
+    values as stars."""
     names = (("paper", "columnar (adopted)"), ("loosetop", "top two rows half filled"),
              ("loosetop_xi2_none", "half-filled top, no crowding factor ξ₂"))
     fig, axes = plt.subplots(2, 3, figsize=(15, 7), sharex=True)

@@ -3,7 +3,6 @@
 // these compile and are tested without the DEM module.
 #include <fmt/core.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -150,7 +149,7 @@ class BandForceObserver final : public Observer {
                                           options_.shock.p_ambient, options_.shock.threshold,
                                           options_.shock.y_min);
     BandParcelsView parcels = parcels_of_(view);
-    trajectory_.record(view.time, shock_x, max_shock_advance());
+    trajectory_.record(view.time, shock_x, max_shock_advance(grid.x()));
     arrival_.resize(parcels.count);
     band_arrival_times(trajectory_, options_.bands, parcels.initial_position.x, parcels.initial_position.y,
                        arrival_);
@@ -159,20 +158,14 @@ class BandForceObserver final : public Observer {
     sampled_ = true;
     last_time_ = view.time;
   }
-  /// How far beyond its reach a sampled shock may stand: kMaxShockAdvanceCells of the
-  /// widest of the two cells after the reach when sampled every step (the shock moves less
-  /// than one per step), no limit when sampled at outputs only.
-  double max_shock_advance() const {
+  /// How far beyond its reach a sampled shock may stand: kMaxShockAdvanceCells widths of the
+  /// cell holding the reach when sampled every step (the shock moves less than one per step),
+  /// no limit when sampled at outputs only.
+  double max_shock_advance(const Axis& x) const {
     const double reach = trajectory_.reach();
-    if (!options_.sample_every_step || std::isnan(reach) || x_centers_.size() < 3)
+    if (!options_.sample_every_step || std::isnan(reach))
       return std::numeric_limits<double>::infinity();
-    const auto at =
-        std::upper_bound(x_centers_.begin(), x_centers_.end(), reach) - x_centers_.begin();
-    const std::size_t i =
-        std::clamp<std::size_t>(static_cast<std::size_t>(at), 1, x_centers_.size() - 2);
-    const double width =
-        std::max(x_centers_[i] - x_centers_[i - 1], x_centers_[i + 1] - x_centers_[i]);
-    return kMaxShockAdvanceCells * width;
+    return kMaxShockAdvanceCells * x.width(x.locate(reach));
   }
   static constexpr double kMaxShockAdvanceCells = 8.0;
 

@@ -66,13 +66,15 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
       xs.push_back(surface->column(1)[k]);
       hs.push_back(surface->column(2)[k]);
     }
-    std::nth_element(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(first.size() / 2), first.end());
-    layer_top = r.layer_top = first[first.size() / 2];
     // A looser top reads as a partly filled top cell at t = 0 (below y_max), which the first
     // shuffle of its loose parcels fills: lifting counts from the columns' top instead
     // (docs/dem.md, "A looser top"; analysis/paper_compare.py does the same).
-    if (scene.particles.layer.loose_top_rows > 0)
-      layer_top = r.layer_top = scene.particles.layer.y_max;
+    if (scene.particles.layer.loose_top_rows == 0) {
+      std::nth_element(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(first.size() / 2),
+                       first.end());
+      layer_top = first[first.size() / 2];
+    }
+    r.layer_top = layer_top;
     for (std::size_t s = 0; s < stations.size(); ++s) r.heights[s] = height_at_station(xs, hs, stations[s]);
   }
   // The shock when the surface profile was taken (the last sample at or before it).
