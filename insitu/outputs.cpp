@@ -1,6 +1,7 @@
 #include "insitu/outputs.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "insitu/observers.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
@@ -9,42 +10,50 @@
 namespace dustlift {
 namespace {
 
-/// A force part's columns, or none when the scene does not compute it (a column of zeros
-/// would read as a computed zero force).
-Vec2Columns force_part(bool computed, const std::vector<double>& fx,
-                       const std::vector<double>& fy) {
-  return computed ? Vec2Columns{present_column(fx), present_column(fy)} : Vec2Columns{};
+/// Whether the run computes a force part (a column of zeros would read as a computed zero
+/// force, so the parts of effects that are off are not written).
+bool computed(const StateView& v, ForcePart part) {
+  const CouplingConfig& c = v.scene->coupling;
+  switch (part) {
+    case ForcePart::Drag:
+      return c.drag;
+    case ForcePart::Magnus:
+      return c.magnus;
+    case ForcePart::Pressure:
+      return c.pressure_force;
+    default:
+      return true;
+  }
 }
-Vec2Columns both(const std::vector<double>& x, const std::vector<double>& y) {
-  return {present_column(x), present_column(y)};
+Vec2Columns force_part(const StateView& v, ForcePart part, const std::vector<double>& fx,
+                       const std::vector<double>& fy) {
+  return computed(v, part) ? Vec2Columns{present_column(fx), present_column(fy)} : Vec2Columns{};
 }
 
-/// Parcel arrays straight from the ParcelSystem (no copy): the writer reads them at outputs.
-/// The force parts of effects that are off are left out; the table's attached columns marked
-/// `written` are added under their names.
+/// Parcel arrays straight from the parcel table (no copy): its written columns, each under
+/// its point array's name (two components make a vector), in the table's order; the force
+/// parts the run does not compute are left out. Every column is present, also on a rank
+/// without parcels (present_column).
 ParcelArraysView parcel_arrays_of(const StateView& v) {
   const ParcelSystem& p = *v.parcels;
-  const CouplingConfig& c = v.scene->coupling;
   ParcelArraysView a;
   a.count = p.size();
-  // Every column present, also on a rank without parcels (present_column).
-  a.position = both(p.x, p.y);
   static constexpr std::int32_t kNoId = 0;
   a.id =
       p.id.empty() ? std::span<const std::int32_t>(&kNoId, 0) : std::span<const std::int32_t>(p.id);
-  a.velocity = both(p.vx, p.vy);
-  a.angular_velocity = present_column(p.omega);
-  a.temperature = present_column(p.temperature);
-  a.diameter = present_column(p.diameter);
-  a.initial_position = both(p.x_initial, p.y_initial);
-  a.force_contact = both(p.contact_fx, p.contact_fy);
-  a.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
-  a.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
-  a.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
-  for (std::size_t k = 0; k < p.attached_count(); ++k) {
-    if (p.attached_spec(k).written)
-      a.extra.push_back({p.attached_spec(k).name, present_column(p.attached(k))});
-  }
+  p.for_each_column([&](const ParcelColumnSpec& c, const auto& values) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<double>>) {
+      if (!c.written || (c.part != ForcePart::None && !computed(v, c.part))) return;
+      const std::string& name = c.written_as.empty() ? c.name : c.written_as;
+      if (name == "position") {
+        (c.component == 0 ? a.position.x : a.position.y) = present_column(values);
+      } else if (c.component == 1 && !a.arrays.empty() && a.arrays.back().name == name) {
+        a.arrays.back().y = present_column(values);
+      } else {
+        a.add(name, present_column(values));
+      }
+    }
+  });
   return a;
 }
 
@@ -55,11 +64,10 @@ BandParcelsView band_arrays_of(const StateView& v) {
   b.count = p.size();
   b.initial_position = {p.x_initial, p.y_initial};
   b.y = p.y;
-  const CouplingConfig& c = v.scene->coupling;
   b.force_contact = {p.contact_fx, p.contact_fy};
-  b.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
-  b.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
-  b.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
+  b.force_drag = force_part(v, ForcePart::Drag, p.drag_fx, p.drag_fy);
+  b.force_magnus = force_part(v, ForcePart::Magnus, p.magnus_fx, p.magnus_fy);
+  b.force_pressure = force_part(v, ForcePart::Pressure, p.pressure_fx, p.pressure_fy);
   b.particle_rotation = p.omega;
   if (v.coupling != nullptr) {
     b.relative_rotation = p.column(v.coupling->relative_rotation_column());
@@ -82,7 +90,8 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
   }
   // Effects-off rule: without the section no Catalyst code is loaded or run.
   if (scene.insitu.catalyst.enabled) {
-    observers.push_back(make_catalyst_observer(scene, output_dir, scene.particles.enabled ? parcel_arrays_of : nullptr));
+    observers.push_back(make_catalyst_observer(
+        scene, output_dir, scene.particles.enabled ? parcel_arrays_of : nullptr));
   }
   const OutputConfig& out = scene.output;
   if (out.vtk) observers.push_back(make_vtk_gas_writer());
@@ -99,14 +108,16 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
   // every row is searched.
   if (scene.particles.enabled) {
     const Axis y(build_axis_nodes(scene.grid.y), 0);
-    if (scene.particles.layer.y_max <= y.center(y.cells() - 1)) shock.y_min = scene.particles.layer.y_max;
+    if (scene.particles.layer.y_max <= y.center(y.cells() - 1))
+      shock.y_min = scene.particles.layer.y_max;
   }
   if (ic.axis == 'x') {
     // A Riemann start with the high pressure on the right sends its shock to -x: skip.
     const bool rightward = ic.kind != InitialCondition::Kind::Riemann || ic.left.p > ic.right.p;
     if (rightward) observers.push_back(make_shock_position_observer(shock));
   }
-  if (!out.probes.empty()) observers.push_back(make_probe_observer({out.probes, out.probe_interval}));
+  if (!out.probes.empty())
+    observers.push_back(make_probe_observer({out.probes, out.probe_interval}));
   if (!scene.particles.enabled) return observers;
 
   if (out.vtk) observers.push_back(make_vtk_parcel_writer(parcel_arrays_of));
@@ -119,11 +130,13 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
   // quarter of the layer (the paper's analysis region, 100-200 mm of 400 mm).
   const LayerConfig& L = scene.particles.layer;
   const double len = L.x_max - L.x_min;
-  observers.push_back(make_near_layer_observer({L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.y_min, L.y_max + 5e-3}));
+  observers.push_back(make_near_layer_observer(
+      {L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.y_min, L.y_max + 5e-3}));
 
   if (!out.bands.empty() && ic.axis == 'x') {
     BandForceOptions bands;
-    for (const auto& b : out.bands) bands.bands.push_back({b.name, b.x_min, b.x_max, b.y_min, b.y_max});
+    for (const auto& b : out.bands)
+      bands.bands.push_back({b.name, b.x_min, b.x_max, b.y_min, b.y_max});
     bands.averaging.tau_min = 0.0;
     bands.averaging.tau_max = out.band_duration;
     bands.averaging.bin_width = out.band_bin_width;

@@ -5,34 +5,32 @@
 
 namespace dustlift {
 
+const ParcelPointArray* ParcelArraysView::find(const std::string& name) const {
+  for (const ParcelPointArray& a : arrays) {
+    if (a.name == name) return &a;
+  }
+  return nullptr;
+}
+
 void ParcelArraysView::check_sizes() const {
-  auto check = [this](const char* name, std::size_t n) {
+  auto check = [this](const std::string& name, std::size_t n) {
     if (n != 0 && n != count)
-      throw std::invalid_argument(std::string("ParcelArraysView: ") + name + " has " +
-                                  std::to_string(n) + " values, expected " +
-                                  std::to_string(count));
-  };
-  auto check2 = [&](const char* name, const Vec2Columns& v) {
-    check(name, v.x.size());
-    check(name, v.y.size());
-    if (v.x.size() != v.y.size())
-      throw std::invalid_argument(std::string("ParcelArraysView: ") + name +
-                                  " x and y differ in length");
+      throw std::invalid_argument("ParcelArraysView: " + name + " has " + std::to_string(n) +
+                                  " values, expected " + std::to_string(count));
   };
   if (count > 0 && !position.present())
     throw std::invalid_argument("ParcelArraysView: position is required");
-  check2("position", position);
-  check2("velocity", velocity);
-  check("angular_velocity", angular_velocity.size());
-  check("temperature", temperature.size());
-  check("diameter", diameter.size());
-  check2("initial_position", initial_position);
-  check2("force_contact", force_contact);
-  check2("force_drag", force_drag);
-  check2("force_magnus", force_magnus);
-  check2("force_pressure", force_pressure);
+  check("position", position.x.size());
+  check("position", position.y.size());
+  for (const ParcelPointArray& a : arrays) {
+    check(a.name, a.x.size());
+    if (a.is_vector()) {
+      check(a.name, a.y.size());
+      if (a.x.size() != a.y.size())
+        throw std::invalid_argument("ParcelArraysView: " + a.name + " x and y differ in length");
+    }
+  }
   check("id", id.size());
-  for (const auto& c : extra) check(c.name.c_str(), c.values.size());
 }
 
 ParcelArraysView kept_rows(const ParcelArraysView& all, std::span<const std::uint8_t> drop,
@@ -54,20 +52,10 @@ ParcelArraysView kept_rows(const ParcelArraysView& all, std::span<const std::uin
       if (drop.empty() || drop[i] == 0) to[k++] = from[i];
     return present_column(to);
   };
-  const auto copy2 = [&](const Vec2Columns& v) { return Vec2Columns{copy(v.x), copy(v.y)}; };
   ParcelArraysView out;
   out.count = kept;
-  out.position = copy2(all.position);
-  out.velocity = copy2(all.velocity);
-  out.angular_velocity = copy(all.angular_velocity);
-  out.temperature = copy(all.temperature);
-  out.diameter = copy(all.diameter);
-  out.initial_position = copy2(all.initial_position);
-  out.force_contact = copy2(all.force_contact);
-  out.force_drag = copy2(all.force_drag);
-  out.force_magnus = copy2(all.force_magnus);
-  out.force_pressure = copy2(all.force_pressure);
-  for (const auto& c : all.extra) out.extra.push_back({c.name, copy(c.values)});
+  out.position = {copy(all.position.x), copy(all.position.y)};
+  for (const ParcelPointArray& a : all.arrays) out.arrays.push_back({a.name, copy(a.x), copy(a.y)});
   if (all.id.data() != nullptr) {
     storage.id.resize(kept);
     storage.id.reserve(1);  // a data pointer even for no parcel: the id column is present

@@ -26,29 +26,31 @@ struct Vec2Columns {
   bool present() const { return is_present(x); }
 };
 
-/// A further per-parcel array, written under its name (e.g. a written column of the table).
-struct NamedParcelColumn {
+/// One point array of the parcels under its name: a scalar (y absent) or a 2-D vector.
+struct ParcelPointArray {
   std::string name;
-  std::span<const double> values;
+  std::span<const double> x, y;
+  bool is_vector() const { return is_present(y); }
 };
 
-/// Parcel state for the .vtp writer, each array `count` long (optional ones may be empty).
-/// The point order is the parcel system's (it changes as the DEM re-sorts); `id` names each
-/// parcel for good (ParaView: Temporal Particles To Pathlines follows it over time).
+/// Parcel state for the .vtp writer and Catalyst: the positions, the ids and the point arrays
+/// in the order they are written, each `count` long. The writer of a run builds it from the
+/// parcel table's written columns; the point order is the parcel system's (it changes as the
+/// DEM re-sorts); `id` names each parcel for good (ParaView: Temporal Particles To Pathlines
+/// follows it over time).
 struct ParcelArraysView {
   std::size_t count = 0;
-  Vec2Columns position;                      ///< m (required)
-  std::span<const std::int32_t> id;          ///< stable parcel id
-  Vec2Columns velocity;                      ///< m/s
-  std::span<const double> angular_velocity;  ///< rad/s, w_z
-  std::span<const double> temperature;       ///< K
-  std::span<const double> diameter;          ///< m
-  Vec2Columns initial_position;              ///< m
-  Vec2Columns force_contact;                 ///< N
-  Vec2Columns force_drag;                    ///< N
-  Vec2Columns force_magnus;                  ///< N
-  Vec2Columns force_pressure;                ///< N (pressure-gradient force)
-  std::vector<NamedParcelColumn> extra;      ///< further scalar point arrays
+  Vec2Columns position;              ///< m (required)
+  std::span<const std::int32_t> id;  ///< stable parcel id
+  std::vector<ParcelPointArray> arrays;
+  void add(std::string name, std::span<const double> values) {
+    arrays.push_back({std::move(name), values, {}});
+  }
+  void add(std::string name, const Vec2Columns& v) {
+    arrays.push_back({std::move(name), v.x, v.y});
+  }
+  /// The array of that name; null when absent.
+  const ParcelPointArray* find(const std::string& name) const;
   /// Throws std::invalid_argument when a present array is not `count` long.
   void check_sizes() const;
 };

@@ -100,22 +100,14 @@ vtkSmartPointer<vtkPolyData> make_parcel_polydata(const ParcelArraysView& parcel
   poly->SetPoints(points);
   poly->SetVerts(vertices);
   vtkPointData* pd = poly->GetPointData();
-  auto add2 = [pd](const char* name, const Vec2Columns& v) {
-    if (v.present()) pd->AddArray(vector_array(name, v.x, v.y));
-  };
-  auto add1 = [pd](const char* name, std::span<const double> s) {
-    if (is_present(s)) pd->AddArray(wrapped_array(name, s));
-  };
-  add2("velocity", parcels.velocity);
-  add1("angular_velocity", parcels.angular_velocity);
-  add1("temperature", parcels.temperature);
-  add1("diameter", parcels.diameter);
-  add2("initial_position", parcels.initial_position);
-  add2("force_contact", parcels.force_contact);
-  add2("force_drag", parcels.force_drag);
-  add2("force_magnus", parcels.force_magnus);
-  add2("force_pressure", parcels.force_pressure);
-  for (const auto& c : parcels.extra) add1(c.name.c_str(), c.values);
+  for (const ParcelPointArray& a : parcels.arrays) {
+    if (!is_present(a.x)) continue;
+    if (a.is_vector()) {
+      pd->AddArray(vector_array(a.name.c_str(), a.x, a.y));
+    } else {
+      pd->AddArray(wrapped_array(a.name.c_str(), a.x));
+    }
+  }
   if (parcels.id.data() != nullptr) {
     static_assert(sizeof(int) == sizeof(std::int32_t));
     vtkNew<vtkIntArray> id;

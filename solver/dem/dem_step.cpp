@@ -15,7 +15,7 @@ void ParcelSystem::update_active_count() {
     active_count_ = size();
     return;
   }
-  const std::vector<double>& a = attached_[activity_.index];
+  const std::vector<double>& a = column(activity_);
   std::size_t k = a.size();
   while (k > 0 && a[k - 1] == 0.0) --k;
   active_count_ = k;
@@ -26,7 +26,9 @@ double ParcelSystem::wall_position(int w) const {
   return w == 0 ? d.y_min : w == 1 ? d.y_max : w == 2 ? d.x_min : d.x_max;
 }
 
-void ParcelSystem::step(double dt) { step_with_parts(dt, true); }
+void ParcelSystem::step(double dt) {
+  step_with_parts(dt, true);
+}
 
 void ParcelSystem::step_with_parts(double dt, bool store_parts) {
   if (needs_rebuild_) {
@@ -56,7 +58,10 @@ void ParcelSystem::compute_contacts(double dt) {
   const ContactParams wc = cfg_.wall_contact;
   const double lx = length_x_;
   // Active walls: outward normal from the parcel towards the wall, and the wall plane.
-  struct ActiveWall { int slot; double nx, ny, pos; };
+  struct ActiveWall {
+    int slot;
+    double nx, ny, pos;
+  };
   ActiveWall walls[kWallCount];
   int n_walls = 0;
   const DemDomain& d = cfg_.domain;
@@ -79,9 +84,9 @@ void ParcelSystem::compute_contacts(double dt) {
   double* __restrict fx_out = contact_fx.data();
   double* __restrict fy_out = contact_fy.data();
   double* __restrict tq_out = contact_torque.data();
-  const std::uint8_t* __restrict wmask = wall_mask_.data();
+  const std::uint8_t* __restrict wmask = wall_mask.data();
   // A ghost's forces are its owner's (its state is refreshed after every sub-step).
-  const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
+  const std::uint8_t* __restrict ghost = rank_copy.empty() ? nullptr : rank_copy.data();
 
   // Dynamic chunks: contacts cluster where the layer is disturbed, at one end of the x-ordered
   // parcels. Each parcel gathers its own forces: any schedule gives the same bits.
@@ -157,11 +162,13 @@ namespace {
 /// Symplectic Euler of the parcels under contacts (and gravity) alone; returns the largest
 /// squared displacement since the last neighbour build in units of the parcel's own skin
 /// (is2 = 1 / skin^2): above 1 the list must be rebuilt. Branch-free: it vectorises.
-double integrate_plain(double* __restrict px, double* __restrict py, double* __restrict pvx, double* __restrict pvy,
-                       double* __restrict pw, const double* __restrict im, const double* __restrict ii,
-                       const double* __restrict cfx, const double* __restrict cfy, const double* __restrict ctq,
-                       const double* __restrict xb, const double* __restrict yb, const double* __restrict is2,
-                       std::size_t n, double dt, double gx, double gy) {
+double integrate_plain(double* __restrict px, double* __restrict py, double* __restrict pvx,
+                       double* __restrict pvy, double* __restrict pw, const double* __restrict im,
+                       const double* __restrict ii, const double* __restrict cfx,
+                       const double* __restrict cfy, const double* __restrict ctq,
+                       const double* __restrict xb, const double* __restrict yb,
+                       const double* __restrict is2, std::size_t n, double dt, double gx,
+                       double gy) {
   double max_d2 = 0.0;
 #pragma omp parallel for simd schedule(static) reduction(max : max_d2) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
@@ -182,8 +189,10 @@ double integrate_plain(double* __restrict px, double* __restrict py, double* __r
 /// Arrays of the forced integration (ParcelSystem columns, resolved for one sub-step).
 struct ForcedArrays {
   double *x, *y, *vx, *vy, *omega, *temperature;
-  const double *inv_m, *inv_I, *contact_fx, *contact_fy, *contact_torque, *x_build, *y_build, *inv_skin2;
-  const double *gas_u, *gas_v, *gas_rotation, *gas_T, *K, *M, *kappa, *H, *pressure_fx, *pressure_fy;
+  const double *inv_m, *inv_I, *contact_fx, *contact_fy, *contact_torque, *x_build, *y_build,
+      *inv_skin2;
+  const double *gas_u, *gas_v, *gas_rotation, *gas_T, *K, *M, *kappa, *H, *pressure_fx,
+      *pressure_fy;
   double *impulse_x, *impulse_y, *work, *heat;
   double *drag_fx, *drag_fy, *magnus_fx, *magnus_fy, *fluid_torque, *heat_rate, *relative_rotation;
 };
@@ -191,8 +200,8 @@ struct ForcedArrays {
 /// Symplectic Euler under contacts and the frozen-gas forcing (GasForcing); the effects that
 /// are off are compiled out. Store: write the force parts for the observers.
 template <bool Drag, bool Magnus, bool Pressure, bool Torque, bool Heat, bool Store>
-double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, double gx, double gy, double inv_c,
-                               double magnus_sign) {
+double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, double gx,
+                               double gy, double inv_c, double magnus_sign) {
   // Local restrict copies (through the struct the compiler would assume aliasing).
   double* __restrict px = a.x;
   double* __restrict py = a.y;
@@ -310,31 +319,31 @@ void ParcelSystem::integrate(double dt, bool store_parts) {
     integrate_forced(dt, store_parts);
     return;
   }
-  max_d2 = integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(), inv_mass_real_.data(),
-                           inv_inertia_real_.data(), contact_fx.data(), contact_fy.data(), contact_torque.data(),
-                           x_build_.data(), y_build_.data(), inv_skin2_.data(), active_count(), dt, cfg_.gravity_x,
-                           cfg_.gravity_y);
+  max_d2 = integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(),
+                           inv_mass_real.data(), inv_inertia_real.data(), contact_fx.data(),
+                           contact_fy.data(), contact_torque.data(), x_build.data(), y_build.data(),
+                           inv_skin2.data(), active_count(), dt, cfg_.gravity_x, cfg_.gravity_y);
   // A parcel moved more than its skin: a pair may now be closer than the list knows.
   if (max_d2 > 1.0) needs_rebuild_ = true;
 }
 
 void ParcelSystem::integrate_forced(double dt, bool store_parts) {
   const GasForcing& f = forcing_;
-  auto col = [this](ParcelColumn c) { return attached_[c.index].data(); };
+  auto col = [this](ParcelColumn c) { return column(c).data(); };
   const ForcedArrays a{x.data(),
                        y.data(),
                        vx.data(),
                        vy.data(),
                        omega.data(),
                        temperature.data(),
-                       inv_mass_real_.data(),
-                       inv_inertia_real_.data(),
+                       inv_mass_real.data(),
+                       inv_inertia_real.data(),
                        contact_fx.data(),
                        contact_fy.data(),
                        contact_torque.data(),
-                       x_build_.data(),
-                       y_build_.data(),
-                       inv_skin2_.data(),
+                       x_build.data(),
+                       y_build.data(),
+                       inv_skin2.data(),
                        col(f.gas_u),
                        col(f.gas_v),
                        col(f.gas_rotation),
@@ -357,11 +366,13 @@ void ParcelSystem::integrate_forced(double dt, bool store_parts) {
                        heat_rate.data(),
                        col(f.relative_rotation)};
   const std::size_t n = active_count();
-  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity, sign = f.magnus_sign;
+  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity,
+               sign = f.magnus_sign;
   const std::array<bool, 6> flags{f.drag, f.magnus, f.pressure, f.torque, f.heat, store_parts};
-  const double max_d2 = dispatch_flags(flags, [&]<bool D, bool M, bool P, bool T, bool H, bool S>() {
-    return integrate_forced_kernel<D, M, P, T, H, S>(a, n, dt, gx, gy, inv_c, sign);
-  });
+  const double max_d2 =
+      dispatch_flags(flags, [&]<bool D, bool M, bool P, bool T, bool H, bool S>() {
+        return integrate_forced_kernel<D, M, P, T, H, S>(a, n, dt, gx, gy, inv_c, sign);
+      });
   if (max_d2 > 1.0) needs_rebuild_ = true;
 }
 

@@ -59,11 +59,16 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   cell_of_.resize(n);
   cell_y_.resize(n);
   int cx_lo = cells_x_, cx_hi = 0, cy_lo = cells_y_, cy_hi = 0;
-#pragma omp parallel for schedule(static) reduction(min : cx_lo, cy_lo) reduction(max : cx_hi, cy_hi) if (n >= kParallelMinimum)
+#pragma omp parallel for schedule(static) reduction(min             \
+                                                    : cx_lo, cy_lo) \
+    reduction(max                                                   \
+              : cx_hi, cy_hi) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     // Clamping keeps parcels outside the domain correct: it is monotone and contracts.
-    const int cx = std::clamp(static_cast<int>(std::floor((x[i] - d.x_min) / cell_dx_)), 0, cells_x_ - 1);
-    const int cy = std::clamp(static_cast<int>(std::floor((y[i] - d.y_min) / cell_dy_)), 0, cells_y_ - 1);
+    const int cx =
+        std::clamp(static_cast<int>(std::floor((x[i] - d.x_min) / cell_dx_)), 0, cells_x_ - 1);
+    const int cy =
+        std::clamp(static_cast<int>(std::floor((y[i] - d.y_min) / cell_dy_)), 0, cells_y_ - 1);
     cell_of_[i] = cx;
     cell_y_[i] = cy;
     cx_lo = std::min(cx_lo, cx);
@@ -95,18 +100,9 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
     return;
   }
   ++data_permutations_;
-  for_each_permuted_column([this](std::vector<double>& v) { permute(v, order_, scratch_d_); });
-  permute(id, order_, scratch_i_);
-  if (comm_ != nullptr) {
-    permute(order_key, order_, scratch_key_);
-    permute(ghost_, order_, scratch_u8_);
-  }
-  scratch_wall_.resize(n * kWallCount);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-  for (std::size_t k = 0; k < n; ++k) {
-    for (int w = 0; w < kWallCount; ++w) scratch_wall_[k * kWallCount + w] = wall_delta[order_[k] * kWallCount + w];
-  }
-  wall_delta.swap(scratch_wall_);
+  // The carried columns (and the ranks' order keys and copy flags); the rebuilt ones are
+  // made after this sort.
+  permute_rows(order_, true, false);
   permute(cell_of_, order_, scratch_i_);
   old_index_.swap(order_);
   members_.resize(n);
@@ -157,19 +153,19 @@ void ParcelSystem::rebuild_neighbours() {
   // its own skin (integrate() then asks for a rebuild).
   const SkinLimits limits = skin_limits();
   const double s_base = limits.base, s_time = limits.time, s_cap = limits.cap;
-  half_skin_.resize(n);
+  half_skin.resize(n);
   double s_max = s_base;
 #pragma omp parallel for schedule(static) reduction(max : s_max) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     const double speed = std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]);
     const double s = std::clamp(speed * s_time, s_base, s_cap);
-    half_skin_[i] = s;
+    half_skin[i] = s;
     s_max = std::max(s_max, s);
   }
   if (distributed) s_max = -comm_->min(-s_max);
   fast_.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    if (half_skin_[i] > s_base) fast_.push_back(static_cast<std::int32_t>(i));
+    if (half_skin[i] > s_base) fast_.push_back(static_cast<std::int32_t>(i));
   }
 
   // Visits the parcels of the cells within `block` cells of parcel i's cell in a fixed order
@@ -201,7 +197,7 @@ void ParcelSystem::rebuild_neighbours() {
   };
   auto listed = [&](std::size_t i, std::int32_t j, int image) {
     const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
-    const double reach = radius[i] + radius[j] + half_skin_[i] + half_skin_[j];
+    const double reach = radius[i] + radius[j] + half_skin[i] + half_skin[j];
     return ddx * ddx + ddy * ddy < reach * reach;
   };
 
@@ -218,22 +214,25 @@ void ParcelSystem::rebuild_neighbours() {
     std::vector<FastPair>& mine = fast_pairs_by_thread_[static_cast<std::size_t>(t)];
     mine.clear();
     const std::size_t f0 = n_fast * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
-    const std::size_t f1 = n_fast * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
+    const std::size_t f1 =
+        n_fast * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
     for (std::size_t f = f0; f < f1; ++f) {
       const auto i = static_cast<std::size_t>(fast_[f]);
-      const double r = 2.0 * radius_max_ + half_skin_[i] + s_max;
+      const double r = 2.0 * radius_max_ + half_skin[i] + s_max;
       const int block = std::max(1, static_cast<int>(std::ceil(r / min_cell)));
       for_each_nearby(i, block, [&](std::int32_t j, int image) {
-        if (listed(i, j, image)) mine.push_back({static_cast<std::int32_t>(i), j, static_cast<std::int8_t>(image)});
+        if (listed(i, j, image))
+          mine.push_back({static_cast<std::int32_t>(i), j, static_cast<std::int8_t>(image)});
       });
     }
   }
   fast_pairs_.clear();
-  for (const auto& part : fast_pairs_by_thread_) fast_pairs_.insert(fast_pairs_.end(), part.begin(), part.end());
+  for (const auto& part : fast_pairs_by_thread_)
+    fast_pairs_.insert(fast_pairs_.end(), part.begin(), part.end());
   // Slow partners of fast parcels, sorted by (slow parcel, fast parcel): their extra slots.
   extra_pairs_.clear();
   for (const FastPair& fp : fast_pairs_) {
-    if (half_skin_[static_cast<std::size_t>(fp.j)] <= s_base) {
+    if (half_skin[static_cast<std::size_t>(fp.j)] <= s_base) {
       extra_pairs_.push_back({fp.j, fp.i, static_cast<std::int8_t>(-fp.image)});
     }
   }
@@ -249,7 +248,7 @@ void ParcelSystem::rebuild_neighbours() {
 
   // Slow parcels: slow partners from the 3x3 block, then the fast ones that found them.
   auto for_each_partner = [&](std::size_t i, auto&& f) {
-    if (half_skin_[i] > s_base) {
+    if (half_skin[i] > s_base) {
       for (std::int32_t k = fast_start_[i]; k < fast_start_[i + 1]; ++k) {
         const FastPair& fp = fast_pairs_[static_cast<std::size_t>(k)];
         f(fp.j, fp.image);
@@ -257,7 +256,7 @@ void ParcelSystem::rebuild_neighbours() {
       return;
     }
     for_each_nearby(i, 1, [&](std::int32_t j, int image) {
-      if (half_skin_[static_cast<std::size_t>(j)] <= s_base && listed(i, j, image)) f(j, image);
+      if (half_skin[static_cast<std::size_t>(j)] <= s_base && listed(i, j, image)) f(j, image);
     });
     for (std::int32_t k = extra_start_[i]; k < extra_start_[i + 1]; ++k) {
       const FastPair& e = extra_pairs_[static_cast<std::size_t>(k)];
@@ -286,7 +285,9 @@ void ParcelSystem::rebuild_neighbours() {
     mine.clear();
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = mine.size();
-      for_each_partner(i, [&](std::int32_t j, int image) { mine.push_back({j, static_cast<std::int8_t>(image)}); });
+      for_each_partner(i, [&](std::int32_t j, int image) {
+        mine.push_back({j, static_cast<std::int8_t>(image)});
+      });
       nbr_offset[i + 1] = static_cast<std::int32_t>(mine.size() - before);
     }
   }
@@ -324,10 +325,10 @@ void ParcelSystem::rebuild_neighbours() {
   }
   // Walls each parcel may touch before the next rebuild (it moves less than its skin until
   // then, and less than a skin per step, so a wall contact also gets its end seen).
-  wall_mask_.resize(n);
+  wall_mask.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
-    const double reach = radius[i] + 2.0 * half_skin_[i];
+    const double reach = radius[i] + 2.0 * half_skin[i];
     std::uint8_t mask = 0;
     if (d.wall_bottom && y[i] - d.y_min < reach) mask |= 1u << static_cast<int>(Wall::Bottom);
     if (d.wall_top && d.y_max - y[i] < reach) mask |= 1u << static_cast<int>(Wall::Top);
@@ -337,23 +338,23 @@ void ParcelSystem::rebuild_neighbours() {
     for (int w = 0; w < kWallCount; ++w) {
       if (wall_delta[i * kWallCount + w] != 0.0) mask |= 1u << w;
     }
-    wall_mask_[i] = mask;
+    wall_mask[i] = mask;
   }
   // The positions of this build and the skins' inverse squares, in parallel (no allocation:
   // same sizes as before).
-  x_build_.resize(n);
-  y_build_.resize(n);
-  inv_skin2_.resize(n);
+  x_build.resize(n);
+  y_build.resize(n);
+  inv_skin2.resize(n);
 #pragma omp parallel for simd schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
-    x_build_[i] = x[i];
-    y_build_[i] = y[i];
-    inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
+    x_build[i] = x[i];
+    y_build[i] = y[i];
+    inv_skin2[i] = 1.0 / (half_skin[i] * half_skin[i]);
   }
   // A ghost's moves are its owner's to judge: it never asks for a rebuild here.
   if (distributed) {
     for (std::size_t i = 0; i < n; ++i) {
-      if (ghost_[i] != 0) inv_skin2_[i] = 0.0;
+      if (rank_copy[i] != 0) inv_skin2[i] = 0.0;
     }
   }
   needs_rebuild_ = false;

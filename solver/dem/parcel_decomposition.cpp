@@ -26,12 +26,6 @@
 namespace dustlift {
 namespace {
 
-/// Doubles of a packed parcel before its history: key, id, the permuted double columns,
-/// the wall history, x_build, y_build, half skin, wall mask, history length.
-std::size_t packed_head(std::size_t permuted_columns) {
-  return 2 + permuted_columns + kWallCount + 5;
-}
-
 class SecondsSince {
  public:
   explicit SecondsSince(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
@@ -59,7 +53,7 @@ void ParcelSystem::set_decomposition(const Communicator& comm, std::vector<doubl
   const std::size_t n = size();
   order_key.resize(n);
   std::iota(order_key.begin(), order_key.end(), std::int64_t{0});
-  ghost_.assign(n, 0);
+  rank_copy.assign(n, 0);
   const auto ranks = static_cast<std::size_t>(comm.size());
   send_ghosts_.assign(ranks, {});
   recv_ghosts_.assign(ranks, {});
@@ -91,11 +85,11 @@ int ParcelSystem::ghost_reach_columns() const {
   // s_max the largest skin any parcel may get now or still move by (the last rebuild's).
   const SkinLimits limits = skin_limits();
   double speed_max = 0.0, skin_max = limits.base;
-  const bool built = half_skin_.size() == size();
+  const bool built = half_skin.size() == size();
   for (std::size_t i = 0; i < size(); ++i) {
-    if (ghost_[i] != 0) continue;
+    if (rank_copy[i] != 0) continue;
     speed_max = std::max(speed_max, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]));
-    if (built) skin_max = std::max(skin_max, half_skin_[i]);
+    if (built) skin_max = std::max(skin_max, half_skin[i]);
   }
   const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
   const double s_max = -comm_->min(-s);
@@ -178,16 +172,16 @@ void ParcelSystem::split_replicated() {
     nbr_image.swap(image);
     nbr_delta.swap(delta);
   }
-  for (std::size_t i = 0; i < n; ++i) ghost_[i] = owner[i] != me ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) rank_copy[i] = owner[i] != me ? 1 : 0;
   hist_offset_.assign(n + 1, 0);
   hist_partner_.clear();
   hist_delta_.clear();
   reorder_parcels(keep);
   if (listed) {
     // Between rebuilds a ghost never asks for one (as after a rebuild).
-    inv_skin2_.resize(size());
+    inv_skin2.resize(size());
     for (std::size_t i = 0; i < size(); ++i) {
-      inv_skin2_[i] = ghost_[i] != 0 ? 0.0 : 1.0 / (half_skin_[i] * half_skin_[i]);
+      inv_skin2[i] = rank_copy[i] != 0 ? 0.0 : 1.0 / (half_skin[i] * half_skin[i]);
     }
   }
 }
@@ -197,7 +191,7 @@ void ParcelSystem::drop_decomposition() {
   cuts_.clear();
   first_column_.clear();
   order_key.clear();
-  ghost_.clear();
+  rank_copy.clear();
   send_ghosts_.clear();
   recv_ghosts_.clear();
 }
@@ -214,8 +208,8 @@ void ParcelSystem::set_cuts(std::vector<double> cuts) {
 }
 
 std::size_t ParcelSystem::owned_count() const {
-  if (ghost_.empty()) return size();
-  return static_cast<std::size_t>(std::count(ghost_.begin(), ghost_.end(), std::uint8_t{0}));
+  if (rank_copy.empty()) return size();
+  return static_cast<std::size_t>(std::count(rank_copy.begin(), rank_copy.end(), std::uint8_t{0}));
 }
 
 int ParcelSystem::cell_column(double px) const {
@@ -230,20 +224,7 @@ int ParcelSystem::owner_of_column(int cx) const {
 }
 
 void ParcelSystem::pack_parcel(std::size_t i, bool with_history, std::vector<double>& out) const {
-  out.push_back(
-      static_cast<double>(order_key.empty() ? static_cast<std::int64_t>(i) : order_key[i]));
-  out.push_back(static_cast<double>(id[i]));
-  for (const std::vector<double>* c : builtin_columns()) out.push_back((*c)[i]);
-  out.push_back(inv_mass_real_[i]);
-  out.push_back(inv_inertia_real_[i]);
-  for (const auto& c : attached_) out.push_back(c[i]);
-  for (int w = 0; w < kWallCount; ++w)
-    out.push_back(wall_delta[i * kWallCount + static_cast<std::size_t>(w)]);
-  const bool built = half_skin_.size() == size() && wall_mask_.size() == size();
-  out.push_back(x_build_[i]);
-  out.push_back(y_build_[i]);
-  out.push_back(built ? half_skin_[i] : 0.0);
-  out.push_back(built ? static_cast<double>(wall_mask_[i]) : 0.0);
+  pack_row(i, out);
   const bool listed = with_history && nbr_offset.size() == size() + 1;
   const std::int32_t k0 = listed ? nbr_offset[i] : 0, k1 = listed ? nbr_offset[i + 1] : 0;
   out.push_back(static_cast<double>(k1 - k0));
@@ -255,18 +236,7 @@ void ParcelSystem::pack_parcel(std::size_t i, bool with_history, std::vector<dou
 }
 
 const double* ParcelSystem::append_packed(const double* row, bool ghost) {
-  order_key.push_back(static_cast<std::int64_t>(*row++));
-  id.push_back(static_cast<std::int32_t>(*row++));
-  for (std::vector<double>* c : builtin_columns()) c->push_back(*row++);
-  inv_mass_real_.push_back(*row++);
-  inv_inertia_real_.push_back(*row++);
-  for (auto& c : attached_) c.push_back(*row++);
-  for (int w = 0; w < kWallCount; ++w) wall_delta.push_back(*row++);
-  x_build_.push_back(*row++);
-  y_build_.push_back(*row++);
-  half_skin_.push_back(*row++);
-  wall_mask_.push_back(static_cast<std::uint8_t>(*row++));
-  ghost_.push_back(ghost ? 1 : 0);
+  row = append_packed_row(row, ghost);
   const auto count = static_cast<std::int32_t>(*row++);
   for (std::int32_t k = 0; k < count; ++k) {
     hist_partner_.push_back(static_cast<std::int32_t>(*row++));
@@ -277,28 +247,12 @@ const double* ParcelSystem::append_packed(const double* row, bool ghost) {
 }
 
 void ParcelSystem::reorder_parcels(const std::vector<std::int32_t>& source) {
-  // Before the first rebuild the rebuild's own arrays are empty: give them the table's rows.
+  // Before the first rebuild the rebuilt columns are empty: give them the table's rows.
   const std::size_t rows = size();
-  half_skin_.resize(rows);
-  wall_mask_.resize(rows);
-  for_each_permuted_column([&](std::vector<double>& v) { permute(v, source, scratch_d_); });
-  permute(id, source, scratch_i_);
-  permute(order_key, source, scratch_key_);
-  permute(ghost_, source, scratch_u8_);
-  permute(x_build_, source, scratch_d_);
-  permute(y_build_, source, scratch_d_);
-  permute(half_skin_, source, scratch_d_);
-  permute(wall_mask_, source, scratch_u8_);
+  half_skin.resize(rows);
+  wall_mask.resize(rows);
+  permute_rows(source, true, true);
   const std::size_t n = source.size();
-  scratch_wall_.resize(n * kWallCount);
-  for (std::size_t k = 0; k < n; ++k) {
-    for (int w = 0; w < kWallCount; ++w) {
-      scratch_wall_[k * kWallCount + static_cast<std::size_t>(w)] =
-          wall_delta[static_cast<std::size_t>(source[k]) * kWallCount +
-                     static_cast<std::size_t>(w)];
-    }
-  }
-  wall_delta.swap(scratch_wall_);
   // The carried history (CSR over the rows) follows its rows.
   std::vector<std::int32_t> offset(n + 1, 0), partner;
   std::vector<double> delta;
@@ -351,7 +305,7 @@ bool ParcelSystem::redistribute() {
   // 1. Owned parcels leaving this rank, packed with their history (the list is still valid).
   for (auto& b : send_buf_) b.clear();
   for (std::size_t i = 0; i < n0; ++i) {
-    if (ghost_[i] != 0 || owner[i] == me) continue;
+    if (rank_copy[i] != 0 || owner[i] == me) continue;
     pack_parcel(i, had_list, send_buf_[static_cast<std::size_t>(owner[i])]);
     ++counters_.migrated;
     bool elongated = false;
@@ -374,14 +328,14 @@ bool ParcelSystem::redistribute() {
   std::vector<std::int32_t> keep;
   keep.reserve(n0);
   for (std::size_t i = 0; i < n0; ++i) {
-    if (ghost_[i] == 0 && owner[i] == me) keep.push_back(static_cast<std::int32_t>(i));
+    if (rank_copy[i] == 0 && owner[i] == me) keep.push_back(static_cast<std::int32_t>(i));
   }
   hist_offset_.assign(n0 + 1, 0);
   hist_partner_.clear();
   hist_delta_.clear();
   const bool listed_here = had_list && nbr_offset.size() == n0 + 1;
   for (std::size_t i = 0; i < n0; ++i) {
-    if (listed_here && ghost_[i] == 0) {
+    if (listed_here && rank_copy[i] == 0) {
       for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
         hist_partner_.push_back(
             id[static_cast<std::size_t>(nbr_index[static_cast<std::size_t>(k)])]);
@@ -415,7 +369,7 @@ bool ParcelSystem::redistribute() {
     }
   };
   // Appends the parcels of every rank's message; ghosts are listed by their sender.
-  const std::size_t head = packed_head(kBuiltinColumns + 2 + attached_.size());
+  const std::size_t head = packed_row_size() + 1;  // the row and its history length
   auto take_in = [&](bool ghosts) {
     for (int q = 0; q < ranks; ++q) {
       const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
@@ -474,7 +428,7 @@ void ParcelSystem::after_distributed_sort(bool permuted) {
   for (int q = 0; q < comm.rank(); ++q)
     next += static_cast<std::int64_t>(flat.at(static_cast<std::size_t>(q)));
   for (std::size_t i = 0; i < n; ++i) {
-    if (ghost_[i] == 0) order_key[i] = next++;
+    if (rank_copy[i] == 0) order_key[i] = next++;
   }
   // The ghosts learn their owners' new keys.
   const int ranks = comm.size();
@@ -536,7 +490,7 @@ void ParcelSystem::refresh_ghost_columns(std::span<const ParcelColumn> columns) 
   if (columns.size() > arrays.size()) {
     throw std::invalid_argument("ParcelSystem::refresh_ghost_columns: at most 8 columns at once");
   }
-  for (std::size_t k = 0; k < columns.size(); ++k) arrays[k] = &attached_.at(columns[k].index);
+  for (std::size_t k = 0; k < columns.size(); ++k) arrays[k] = &column(columns[k]);
   refresh_ghosts(std::span(arrays.data(), columns.size()));
 }
 
@@ -566,15 +520,15 @@ void ParcelSystem::assign_packed(const std::vector<std::vector<double>>& pieces)
   // Start from an empty table with this system's columns.
   const std::vector<std::int32_t> none;
   order_key.resize(size());
-  ghost_.assign(size(), 0);
-  x_build_.resize(size());
-  y_build_.resize(size());
+  rank_copy.assign(size(), 0);
+  x_build.resize(size());
+  y_build.resize(size());
   hist_offset_.assign(size() + 1, 0);
   hist_partner_.clear();
   hist_delta_.clear();
   reorder_parcels(none);
-  half_skin_.clear();
-  wall_mask_.clear();
+  half_skin.clear();
+  wall_mask.clear();
   for (const auto& piece : pieces) {
     const double* row = piece.data();
     const double* end = piece.data() + piece.size();
@@ -595,12 +549,12 @@ void ParcelSystem::assign_packed(const std::vector<std::vector<double>>& pieces)
   }
   nbr_image.assign(hist_partner_.size(), 0);
   nbr_delta = hist_delta_;
-  inv_skin2_.resize(half_skin_.size());
-  for (std::size_t i = 0; i < half_skin_.size(); ++i) {
-    inv_skin2_[i] = half_skin_[i] > 0.0 ? 1.0 / (half_skin_[i] * half_skin_[i]) : 0.0;
+  inv_skin2.resize(half_skin.size());
+  for (std::size_t i = 0; i < half_skin.size(); ++i) {
+    inv_skin2[i] = half_skin[i] > 0.0 ? 1.0 / (half_skin[i] * half_skin[i]) : 0.0;
   }
   order_key.clear();
-  ghost_.clear();
+  rank_copy.clear();
 }
 
 }  // namespace dustlift

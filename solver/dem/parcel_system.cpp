@@ -23,118 +23,51 @@ ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
   skin_ = cfg_.skin * cfg_.parcel_diameter;
 }
 
-const std::vector<ParcelColumnSpec>& ParcelSystem::builtin_specs() {
-  // Same order as builtin_columns(). Force parts, torques and heat are per REAL particle.
-  static const std::vector<ParcelColumnSpec> specs = {
-      {"x", "m", true, false},
-      {"y", "m", true, false},
-      {"vx", "m/s", true, false},
-      {"vy", "m/s", true, false},
-      {"omega", "rad/s", true, false},
-      {"temperature", "K", true, false},
-      {"diameter", "m", true, false},
-      {"radius", "m", true, false},
-      {"mass", "kg/m", true, false},
-      {"inertia", "kg m", true, false},
-      {"n_real", "1/m", true, false},
-      {"x_initial", "m", true, false},
-      {"y_initial", "m", true, false},
-      {"contact_fx", "N", true, false},
-      {"contact_fy", "N", true, false},
-      {"contact_torque", "N m", true, false},
-      {"drag_fx", "N", true, false},
-      {"drag_fy", "N", true, false},
-      {"magnus_fx", "N", true, false},
-      {"magnus_fy", "N", true, false},
-      {"pressure_fx", "N", true, false},
-      {"pressure_fy", "N", true, false},
-      {"fluid_torque", "N m", true, false},
-      {"heat_rate", "W", true, false},
-  };
-  return specs;
-}
-
-std::array<std::vector<double>*, ParcelSystem::kBuiltinColumns> ParcelSystem::builtin_columns() {
-  return {&x,           &y,           &vx,          &vy,          &omega,       &temperature,
-          &diameter,    &radius,      &mass,        &inertia,     &n_real,      &x_initial,
-          &y_initial,   &contact_fx,  &contact_fy,  &contact_torque, &drag_fx,  &drag_fy,
-          &magnus_fx,   &magnus_fy,   &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate};
-}
-
-std::array<const std::vector<double>*, ParcelSystem::kBuiltinColumns> ParcelSystem::builtin_columns() const {
-  const auto cols = const_cast<ParcelSystem*>(this)->builtin_columns();
-  std::array<const std::vector<double>*, kBuiltinColumns> out{};
-  for (std::size_t k = 0; k < kBuiltinColumns; ++k) out[k] = cols[k];
-  return out;
-}
-
-void ParcelSystem::for_each_permuted_column(const std::function<void(std::vector<double>&)>& f) {
-  for (std::vector<double>* c : builtin_columns()) f(*c);
-  f(inv_mass_real_);
-  f(inv_inertia_real_);
-  for (auto& c : attached_) f(c);
-}
-
-ParcelColumn ParcelSystem::attach_column(ParcelColumnSpec spec) {
-  attached_specs_.push_back(std::move(spec));
-  attached_.emplace_back(size(), 0.0);
-  attached_.back().reserve(x.capacity());
-  return ParcelColumn{attached_.size() - 1};
-}
-
 void ParcelSystem::set_gas_forcing(const GasForcing& f) {
   for (ParcelColumn c : {f.gas_u, f.gas_v, f.gas_rotation, f.gas_temperature, f.drag_coefficient,
-                         f.magnus_coefficient, f.torque_coefficient, f.heat_coefficient, f.impulse_x, f.impulse_y,
-                         f.work, f.heat_in, f.relative_rotation}) {
-    if (!c.valid() || c.index >= attached_.size()) {
-      throw std::invalid_argument("ParcelSystem::set_gas_forcing: a forcing column is not attached");
+                         f.magnus_coefficient, f.torque_coefficient, f.heat_coefficient,
+                         f.impulse_x, f.impulse_y, f.work, f.heat_in, f.relative_rotation}) {
+    if (!c.valid() || c.index >= attached_count()) {
+      throw std::invalid_argument(
+          "ParcelSystem::set_gas_forcing: a forcing column is not attached");
     }
   }
   forcing_ = f;
 }
 
 void ParcelSystem::reserve(std::size_t n) {
-  for_each_permuted_column([n](std::vector<double>& v) { v.reserve(n); });
-  x_build_.reserve(n);
-  y_build_.reserve(n);
-  id.reserve(n);
-  wall_delta.reserve(n * kWallCount);
+  for_each_column([n](const ParcelColumnSpec& s, auto& v) {
+    if (s.flow == ColumnFlow::Carried) v.reserve(n * static_cast<std::size_t>(s.per_parcel));
+  });
 }
 
 void ParcelSystem::add_parcel(const ParcelInit& p) {
   if (!(p.diameter > 0.0) || !(p.real_diameter > 0.0) || !(p.n_real > 0.0) || !(p.density > 0.0)) {
-    throw std::invalid_argument("ParcelSystem::add_parcel: diameter, density and n_real must be > 0");
+    throw std::invalid_argument(
+        "ParcelSystem::add_parcel: diameter, density and n_real must be > 0");
   }
   // Real particle: sphere of the real diameter. Parcel: n_real of them (eq. 11, §4); its
   // rotational inertia is that of a cylinder of the parcel diameter, I = m r^2 / 2.
-  const double m_real = p.density * std::numbers::pi * p.real_diameter * p.real_diameter *
-                        p.real_diameter / 6.0;
+  const double m_real =
+      p.density * std::numbers::pi * p.real_diameter * p.real_diameter * p.real_diameter / 6.0;
   const double r = 0.5 * p.diameter;
   const double I_real = 0.5 * m_real * r * r;
-  id.push_back(static_cast<std::int32_t>(id.size()));
-  x.push_back(p.x);
-  y.push_back(p.y);
-  vx.push_back(p.vx);
-  vy.push_back(p.vy);
-  omega.push_back(p.omega);
-  temperature.push_back(p.temperature);
-  diameter.push_back(p.diameter);
-  radius.push_back(r);
-  mass.push_back(p.n_real * m_real);
-  inertia.push_back(p.n_real * I_real);
-  n_real.push_back(p.n_real);
-  x_initial.push_back(p.x);
-  y_initial.push_back(p.y);
-  for (auto* v : {&contact_fx, &contact_fy, &contact_torque, &drag_fx, &drag_fy, &magnus_fx,
-                  &magnus_fy, &pressure_fx, &pressure_fy, &fluid_torque, &heat_rate}) {
-    v->push_back(0.0);
-  }
-  for (auto& c : attached_) c.push_back(0.0);
-  inv_mass_real_.push_back(1.0 / m_real);
-  inv_inertia_real_.push_back(1.0 / I_real);
-  x_build_.push_back(p.x);
-  y_build_.push_back(p.y);
-  for (int w = 0; w < kWallCount; ++w) wall_delta.push_back(0.0);
+  const std::size_t i = size();
+  append_zero_row();
+  id[i] = static_cast<std::int32_t>(i);
+  x[i] = x_initial[i] = x_build[i] = p.x;
+  y[i] = y_initial[i] = y_build[i] = p.y;
+  vx[i] = p.vx;
+  vy[i] = p.vy;
+  omega[i] = p.omega;
+  temperature[i] = p.temperature;
+  diameter[i] = p.diameter;
+  radius[i] = r;
+  mass[i] = p.n_real * m_real;
+  inertia[i] = p.n_real * I_real;
+  n_real[i] = p.n_real;
+  inv_mass_real[i] = 1.0 / m_real;
+  inv_inertia_real[i] = 1.0 / I_real;
   // A new parcel has no neighbour slots yet: the next step rebuilds the list.
   nbr_offset.clear();
   nbr_index.clear();
@@ -145,12 +78,6 @@ void ParcelSystem::add_parcel(const ParcelInit& p) {
 
 ParcelInternals ParcelSystem::internals() const {
   ParcelInternals s;
-  s.inv_mass_real = inv_mass_real_;
-  s.inv_inertia_real = inv_inertia_real_;
-  s.x_build = x_build_;
-  s.y_build = y_build_;
-  s.half_skin = half_skin_;
-  s.wall_mask = wall_mask_;
   s.needs_rebuild = needs_rebuild_;
   s.time = time_;
   s.steps = steps_;
@@ -162,42 +89,43 @@ ParcelInternals ParcelSystem::internals() const {
 
 void ParcelSystem::restore_internals(const ParcelInternals& s) {
   const std::size_t n = size();
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("ParcelSystem::restore_internals: ") + what);
+  auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("ParcelSystem::restore_internals: " + what);
   };
-  for (const auto* v : builtin_columns()) require(v->size() == n, "a per-parcel array has the wrong length");
-  for (const auto& c : attached_) require(c.size() == n, "an attached column has the wrong length");
-  require(id.size() == n && wall_delta.size() == n * kWallCount, "id or wall_delta has the wrong length");
-  require(s.inv_mass_real.size() == n && s.inv_inertia_real.size() == n && s.x_build.size() == n &&
-              s.y_build.size() == n,
-          "a private per-parcel array has the wrong length");
-  // The wall mask exists once a neighbour list was built (it is rebuilt with the list).
-  require(s.wall_mask.size() == n || (s.needs_rebuild && s.wall_mask.empty()), "wall_mask has the wrong length");
-  require(s.half_skin.size() == n || (s.needs_rebuild && s.half_skin.empty()), "half_skin has the wrong length");
-  for (double h : s.half_skin) require(h > 0.0 && std::isfinite(h), "half_skin must be positive");
-  for (std::uint8_t m : s.wall_mask) require(m < (1u << kWallCount), "wall_mask out of range");
-  for (std::int32_t i : id) require(i >= 0 && static_cast<std::size_t>(i) < n, "parcel id out of range");
+  bool made = true;  // every rebuilt column made (else a rebuild must be pending)
+  for_each_column([&](const ParcelColumnSpec& c, const auto& v) {
+    const std::size_t rows = n * static_cast<std::size_t>(c.per_parcel);
+    if (c.flow == ColumnFlow::Carried) require(v.size() == rows, c.name + " has the wrong length");
+    if (c.flow == ColumnFlow::Rebuilt) {
+      require(v.size() == rows || v.empty(), c.name + " has the wrong length");
+      made = made && v.size() == rows;
+    }
+  });
+  require(made || s.needs_rebuild, "half_skin or wall_mask missing but no rebuild pending");
+  for (double h : half_skin) require(h > 0.0 && std::isfinite(h), "half_skin must be positive");
+  for (std::uint8_t m : wall_mask) require(m < (1u << kWallCount), "wall_mask out of range");
+  for (std::int32_t i : id)
+    require(i >= 0 && static_cast<std::size_t>(i) < n, "parcel id out of range");
   // The contact history must index the parcels it was saved with.
   if (!nbr_offset.empty()) {
-    require(nbr_offset.size() == n + 1 && nbr_offset.front() == 0, "nbr_offset has the wrong length");
-    for (std::size_t i = 0; i < n; ++i) require(nbr_offset[i] <= nbr_offset[i + 1], "nbr_offset not monotone");
+    require(nbr_offset.size() == n + 1 && nbr_offset.front() == 0,
+            "nbr_offset has the wrong length");
+    for (std::size_t i = 0; i < n; ++i)
+      require(nbr_offset[i] <= nbr_offset[i + 1], "nbr_offset not monotone");
     const auto slots = static_cast<std::size_t>(nbr_offset[n]);
     require(nbr_index.size() == slots && nbr_image.size() == slots && nbr_delta.size() == slots,
             "neighbour slots have the wrong length");
-    for (std::int32_t j : nbr_index) require(j >= 0 && static_cast<std::size_t>(j) < n, "nbr_index out of range");
+    for (std::int32_t j : nbr_index)
+      require(j >= 0 && static_cast<std::size_t>(j) < n, "nbr_index out of range");
     for (std::int8_t im : nbr_image) require(im >= -1 && im <= 1, "nbr_image out of range");
   } else {
-    require(nbr_index.empty() && nbr_image.empty() && nbr_delta.empty(), "neighbour slots without offsets");
+    require(nbr_index.empty() && nbr_image.empty() && nbr_delta.empty(),
+            "neighbour slots without offsets");
     require(s.needs_rebuild, "no neighbour list but no rebuild pending");
   }
-  inv_mass_real_ = s.inv_mass_real;
-  inv_inertia_real_ = s.inv_inertia_real;
-  x_build_ = s.x_build;
-  y_build_ = s.y_build;
-  half_skin_ = s.half_skin;
-  inv_skin2_.resize(half_skin_.size());
-  for (std::size_t i = 0; i < half_skin_.size(); ++i) inv_skin2_[i] = 1.0 / (half_skin_[i] * half_skin_[i]);
-  wall_mask_ = s.wall_mask;
+  inv_skin2.resize(half_skin.size());
+  for (std::size_t i = 0; i < half_skin.size(); ++i)
+    inv_skin2[i] = 1.0 / (half_skin[i] * half_skin[i]);
   needs_rebuild_ = s.needs_rebuild;
   time_ = s.time;
   steps_ = s.steps;
@@ -208,7 +136,7 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
 
 double ParcelSystem::stable_time_step() const {
   double m_min = std::numeric_limits<double>::infinity();
-  for (double im : inv_mass_real_) m_min = std::min(m_min, 1.0 / im);
+  for (double im : inv_mass_real) m_min = std::min(m_min, 1.0 / im);
   const ContactParams& a = cfg_.contact;
   const ContactParams& b = cfg_.wall_contact;
   const double k_max = std::max({a.k_n, a.k_t, b.k_n, b.k_t});
@@ -265,11 +193,15 @@ double ParcelSystem::mechanical_energy() const {
       }
     }
     for (int w = 0; w < kWallCount; ++w) {
-      const bool on = w == 0 ? cfg_.domain.wall_bottom : w == 1 ? cfg_.domain.wall_top
-                    : w == 2 ? cfg_.domain.wall_left : cfg_.domain.wall_right;
+      const bool on = w == 0   ? cfg_.domain.wall_bottom
+                      : w == 1 ? cfg_.domain.wall_top
+                      : w == 2 ? cfg_.domain.wall_left
+                               : cfg_.domain.wall_right;
       if (!on) continue;
-      const double dist = w == 0 ? y[i] - cfg_.domain.y_min : w == 1 ? cfg_.domain.y_max - y[i]
-                        : w == 2 ? x[i] - cfg_.domain.x_min : cfg_.domain.x_max - x[i];
+      const double dist = w == 0   ? y[i] - cfg_.domain.y_min
+                          : w == 1 ? cfg_.domain.y_max - y[i]
+                          : w == 2 ? x[i] - cfg_.domain.x_min
+                                   : cfg_.domain.x_max - x[i];
       const double overlap = radius[i] - dist;
       const double dt_w = wall_delta[i * kWallCount + w];
       if (overlap > 0.0) {

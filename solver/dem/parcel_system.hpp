@@ -21,34 +21,16 @@
 
 #include "solver/core/phase_timer.hpp"
 #include "solver/dem/dem_config.hpp"
+#include "solver/dem/parcel_table.hpp"
 
 namespace dustlift {
 
 class Communicator;
 
-/// Wall slots of the per-parcel wall history, in this order.
-enum class Wall : int { Bottom = 0, Top = 1, Left = 2, Right = 3, Count = 4 };
-inline constexpr int kWallCount = static_cast<int>(Wall::Count);
-
 /// Below this many parcels the loops run on one thread: a parallel region costs more than
 /// the work (and on a shared machine, threads waiting for a busy core cost far more).
 /// Results do not depend on it (every parcel gathers its own sums).
 inline constexpr std::size_t kParallelMinimum = 4096;
-
-/// A column of the parcel table: its name and unit (as written to checkpoints, .vtp and
-/// Catalyst) and what it is for. Every column is permuted with the parcels by the cell sort.
-struct ParcelColumnSpec {
-  std::string name;
-  std::string unit;
-  bool checkpointed = false;  ///< part of the state a restart needs
-  bool written = false;       ///< written to the .vtp (and published in situ)
-};
-
-/// Handle of a column attached to a ParcelSystem (see attach_column).
-struct ParcelColumn {
-  std::size_t index = static_cast<std::size_t>(-1);
-  bool valid() const { return index != static_cast<std::size_t>(-1); }
-};
 
 /// Sub-step gas forcing of the parcels (frozen gas over one CFD step), per REAL particle:
 ///   F = K (u_g - v) + s M (Omega_g - w) z x (u_g - v) + F_p,   M_z = kappa (Omega_g - w),
@@ -65,37 +47,32 @@ struct GasForcing {
   ParcelColumn gas_u, gas_v, gas_rotation, gas_temperature;
   ParcelColumn drag_coefficient, magnus_coefficient, torque_coefficient, heat_coefficient;
   ParcelColumn impulse_x, impulse_y, work, heat_in;  ///< accumulators (zeroed by the coupling)
-  ParcelColumn relative_rotation;                  ///< Omega_g - w of the last sub-step
+  ParcelColumn relative_rotation;                    ///< Omega_g - w of the last sub-step
   bool any() const { return drag || magnus || pressure || torque || heat; }
 };
 
 /// One parcel to add (before the first step).
 struct ParcelInit {
-  double x = 0.0, y = 0.0;          ///< m
-  double vx = 0.0, vy = 0.0;        ///< m/s
-  double omega = 0.0;               ///< rad/s, counter-clockwise positive (right-handed z)
-  double diameter = 100e-6;         ///< m, parcel diameter n_xy d
-  double real_diameter = 100e-6;    ///< m, real particle diameter d
-  double density = 980.0;           ///< kg/m^3 of the real particles
-  double n_real = 1.0;              ///< real particles per parcel (per metre of depth)
-  double temperature = 300.0;       ///< K
+  double x = 0.0, y = 0.0;        ///< m
+  double vx = 0.0, vy = 0.0;      ///< m/s
+  double omega = 0.0;             ///< rad/s, counter-clockwise positive (right-handed z)
+  double diameter = 100e-6;       ///< m, parcel diameter n_xy d
+  double real_diameter = 100e-6;  ///< m, real particle diameter d
+  double density = 980.0;         ///< kg/m^3 of the real particles
+  double n_real = 1.0;            ///< real particles per parcel (per metre of depth)
+  double temperature = 300.0;     ///< K
 };
 
-/// The private state of a ParcelSystem that its next step reads, for checkpoints: with the
-/// public arrays (state, force parts, contact history) it continues a run bitwise.
-/// Per-parcel vectors are in the current (cell-sorted) parcel order.
+/// The DEM's own counters and decisions, for checkpoints: with the parcel table's checkpointed
+/// columns and the contact history they continue a run bitwise.
 struct ParcelInternals {
-  std::vector<double> inv_mass_real, inv_inertia_real;  ///< 1/m and 1/I of one real particle
-  std::vector<double> x_build, y_build;                 ///< positions at the last rebuild
-  std::vector<double> half_skin;                        ///< how far each may move until the next
-  std::vector<std::uint8_t> wall_mask;                  ///< walls within reach until the next rebuild
   bool needs_rebuild = true;
   double time = 0.0;
   long long steps = 0, rebuilds = 0;
-  double gravity_x = 0.0, gravity_y = 0.0;              ///< may differ from the scene (set_gravity)
+  double gravity_x = 0.0, gravity_y = 0.0;  ///< may differ from the scene (set_gravity)
 };
 
-class ParcelSystem {
+class ParcelSystem : public ParcelTable {
  public:
   /// Contact laws, walls, domain, gravity, skin and heat capacity come from `cfg`;
   /// the parcels are added with add_parcel (see make_paper_layer in layer_generator.hpp).
@@ -104,7 +81,6 @@ class ParcelSystem {
   void reserve(std::size_t n);
   /// Adds one parcel; its id is the running count. Invalidates the neighbour list.
   void add_parcel(const ParcelInit& p);
-  std::size_t size() const { return x.size(); }
 
   /// Eq. (18): nu_DEM sqrt(min real-particle mass / max spring constant).
   double stable_time_step() const;
@@ -159,24 +135,6 @@ class ParcelSystem {
     if (needs_rebuild_) rebuild_neighbours();
   }
 
-  /// Attaches a column of doubles to the parcel table (zeros for the parcels present, and for
-  /// parcels added later); from then on it is permuted with the parcels.
-  ParcelColumn attach_column(ParcelColumnSpec spec);
-  std::vector<double>& column(ParcelColumn c) { return attached_[c.index]; }
-  const std::vector<double>& column(ParcelColumn c) const { return attached_[c.index]; }
-  /// The attached columns, in the order attached.
-  std::size_t attached_count() const { return attached_.size(); }
-  const ParcelColumnSpec& attached_spec(std::size_t k) const { return attached_specs_[k]; }
-  const std::vector<double>& attached(std::size_t k) const { return attached_[k]; }
-  std::vector<double>& attached(std::size_t k) { return attached_[k]; }
-
-  /// The built-in double columns (state, properties, force parts) with their specs, and
-  /// their arrays; same order for both.
-  static constexpr std::size_t kBuiltinColumns = 24;
-  static const std::vector<ParcelColumnSpec>& builtin_specs();
-  std::array<std::vector<double>*, kBuiltinColumns> builtin_columns();
-  std::array<const std::vector<double>*, kBuiltinColumns> builtin_columns() const;
-
   /// Sets the sub-step gas forcing (the coupling, once). Its columns must be attached here.
   void set_gas_forcing(const GasForcing& f);
   /// Marks the next advance() to store the force parts, relative rotation and heat rate of
@@ -224,9 +182,9 @@ class ParcelSystem {
   /// takes the whole checkpointed system into a copy of this one, then splits it again.
   void drop_decomposition();
   /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
-  bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
+  bool is_ghost(std::size_t i) const { return is_rank_copy(i); }
   /// Per parcel: 1 = another rank's copy; empty when the system is not decomposed.
-  std::span<const std::uint8_t> ghost_flags() const { return ghost_; }
+  std::span<const std::uint8_t> ghost_flags() const { return rank_copy; }
   /// Parcels this rank owns (size() in a one-rank run).
   std::size_t owned_count() const;
   /// Appends every owned parcel's full state (all columns, wall history and its contact
@@ -252,34 +210,12 @@ class ParcelSystem {
   };
   const DecompositionCounters& decomposition_counters() const { return counters_; }
 
-  /// Checkpoint access to the private state (see ParcelInternals).
+  /// Checkpoint access to the DEM's counters (see ParcelInternals).
   ParcelInternals internals() const;
-  /// Restores it after the public arrays have been restored; throws std::invalid_argument
-  /// when a per-parcel vector does not match size() or the contact history is inconsistent.
+  /// Restores them after the table's columns and the contact history have been restored;
+  /// throws std::invalid_argument when a column does not match size() or the contact
+  /// history is inconsistent. A rebuilt column not made (empty) asks for a rebuild.
   void restore_internals(const ParcelInternals& s);
-
-  // ---- Per-parcel state (SoA; the order changes when parcels are re-sorted by cell) ----
-  std::vector<std::int32_t> id;             ///< stable parcel id (order of add_parcel)
-  /// Decomposed runs: each parcel's index in the one-rank run's parcel order (empty otherwise).
-  std::vector<std::int64_t> order_key;
-  std::vector<double> x, y;                 ///< m (x unwrapped between rebuilds when periodic)
-  std::vector<double> vx, vy;               ///< m/s
-  std::vector<double> omega;                ///< rad/s, counter-clockwise positive
-  std::vector<double> temperature;          ///< K
-  std::vector<double> diameter;             ///< m, parcel
-  std::vector<double> radius;               ///< m, parcel (contact lever arm)
-  std::vector<double> mass;                 ///< kg/m, parcel (n_real m_real)
-  std::vector<double> inertia;              ///< kg m, parcel (cylinder: mass r^2 / 2)
-  std::vector<double> n_real;               ///< real particles per parcel (per metre)
-  std::vector<double> x_initial, y_initial; ///< m, where the parcel started (in-situ filters)
-
-  // ---- Force parts per REAL particle (N, N m, W); observers read, coupling writes ----
-  std::vector<double> contact_fx, contact_fy, contact_torque;  ///< recomputed every step
-  std::vector<double> drag_fx, drag_fy;
-  std::vector<double> magnus_fx, magnus_fy;
-  std::vector<double> pressure_fx, pressure_fy;
-  std::vector<double> fluid_torque;         ///< M_rotation (Table 1)
-  std::vector<double> heat_rate;            ///< Q_i, W (eq. 7)
 
   // ---- Contact history (serialisable for checkpoints) ----
   /// Neighbour list in CSR form: parcel i's candidates are slots
@@ -289,8 +225,6 @@ class ParcelSystem {
   std::vector<std::int32_t> nbr_offset, nbr_index;
   std::vector<std::int8_t> nbr_image;
   std::vector<double> nbr_delta;
-  /// Tangential elongation of each parcel against each wall: wall_delta[i * kWallCount + w].
-  std::vector<double> wall_delta;
 
  private:
   void step_with_parts(double dt, bool store_parts);
@@ -337,12 +271,10 @@ class ParcelSystem {
   void integrate(double dt, bool store_parts);
   void integrate_forced(double dt, bool store_parts);
   double wall_position(int w) const;
-  /// Calls f for every per-parcel double column the cell sort permutes.
-  void for_each_permuted_column(const std::function<void(std::vector<double>&)>& f);
 
   DemConfig cfg_;
-  double length_x_ = 0.0;           ///< periodic length
-  double skin_ = 0.0;               ///< m, absolute
+  double length_x_ = 0.0;  ///< periodic length
+  double skin_ = 0.0;      ///< m, absolute
   bool needs_rebuild_ = true;
   double time_ = 0.0;
   long long steps_ = 0;
@@ -350,14 +282,6 @@ class ParcelSystem {
   long long data_permutations_ = 0;
   long long parcel_substeps_ = 0;
 
-  // Derived per parcel, permuted along with the state.
-  std::vector<double> inv_mass_real_, inv_inertia_real_;
-  std::vector<double> x_build_, y_build_;   ///< positions at the last rebuild
-  std::vector<std::uint8_t> wall_mask_;     ///< bit w: wall w within reach until the next rebuild
-
-  // Attached columns (coupling state, filters' state), permuted with the parcels.
-  std::vector<ParcelColumnSpec> attached_specs_;
-  std::vector<std::vector<double>> attached_;
   GasForcing forcing_;
   bool parts_last_only_ = false;
   ParcelColumn activity_;
@@ -376,7 +300,8 @@ class ParcelSystem {
   }
   /// Index of domain cell (cx, cy) inside the box, numbered in the domain's order.
   int cell_index(int cx, int cy) const {
-    return x_major_ ? (cx - box_x0_) * box_ny_ + (cy - box_y0_) : (cy - box_y0_) * box_nx_ + (cx - box_x0_);
+    return x_major_ ? (cx - box_x0_) * box_ny_ + (cy - box_y0_)
+                    : (cy - box_y0_) * box_nx_ + (cx - box_x0_);
   }
   double cell_dx_ = 1.0, cell_dy_ = 1.0;
   std::vector<std::int32_t> cell_of_, cell_start_, order_;
@@ -391,7 +316,6 @@ class ParcelSystem {
     std::int32_t i, j;
     std::int8_t image;
   };
-  std::vector<double> half_skin_, inv_skin2_;
   std::vector<std::int32_t> fast_, fast_start_, extra_start_;
   std::vector<FastPair> fast_pairs_, extra_pairs_;
   std::vector<std::vector<FastPair>> fast_pairs_by_thread_;
@@ -399,11 +323,11 @@ class ParcelSystem {
     std::int32_t j;
     std::int8_t image;
   };
-  std::vector<std::vector<ListedPartner>> list_by_range_;  ///< rebuild scratch, one per range of parcels (one per thread)
+  std::vector<std::vector<ListedPartner>>
+      list_by_range_;  ///< rebuild scratch, one per range of parcels (one per thread)
   double radius_max_ = 0.0, cutoff_ = 0.0;
 
   // Rebuild scratch (kept to avoid reallocation).
-  std::vector<double> scratch_d_, scratch_wall_;
   std::vector<std::int32_t> scratch_i_;
   std::vector<std::int32_t> old_offset_, old_partner_id_;
   std::vector<double> old_delta_;
@@ -411,16 +335,13 @@ class ParcelSystem {
   // Decomposition state.
   const Communicator* comm_ = nullptr;
   std::vector<double> cuts_;
-  std::vector<int> first_column_;    ///< of each rank's cell columns, plus the end
-  double ghost_margin_ = 0.0;        ///< m, ghosts beyond the contact reach (set_ghost_margin)
-  std::vector<std::uint8_t> ghost_;  ///< per parcel: 1 = another rank's copy
+  std::vector<int> first_column_;  ///< of each rank's cell columns, plus the end
+  double ghost_margin_ = 0.0;      ///< m, ghosts beyond the contact reach (set_ghost_margin)
   std::vector<std::vector<std::int32_t>> send_ghosts_;  ///< per rank: owned parcels it copies
   std::vector<std::vector<std::int32_t>> recv_ghosts_;  ///< per rank: its ghosts here, same order
   std::vector<std::vector<double>> send_buf_, recv_buf_;
   std::vector<std::int32_t> hist_offset_, hist_partner_;  ///< carried history, per table row
   std::vector<double> hist_delta_;
-  std::vector<std::int64_t> scratch_key_;
-  std::vector<std::uint8_t> scratch_u8_;
   DecompositionCounters counters_;
 };
 

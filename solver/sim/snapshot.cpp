@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/sim/simulation.hpp"
@@ -11,26 +12,35 @@
 namespace dustlift {
 namespace {
 
-/// Per-parcel double arrays of the ParcelSystem, by checkpoint name: the checkpointed columns
-/// of its table (state, properties, force parts; in the order of the system) and the contact
-/// history's elongations (nbr_delta: one per neighbour slot; wall_delta: kWallCount per parcel).
-template <class PS>
-auto parcel_doubles(PS& p) {
-  std::vector<std::pair<std::string, decltype(&p.x)>> named;
-  const auto& specs = ParcelSystem::builtin_specs();
-  const auto columns = p.builtin_columns();
-  for (std::size_t k = 0; k < specs.size(); ++k) {
-    if (specs[k].checkpointed) named.emplace_back(specs[k].name, columns[k]);
-  }
-  named.emplace_back("nbr_delta", &p.nbr_delta);
-  named.emplace_back("wall_delta", &p.wall_delta);
-  return named;
+/// The checkpoint's map for a column's element type (the wall mask's bits are stored as int8).
+template <class E>
+auto& snapshot_map(Snapshot& s) {
+  if constexpr (std::is_same_v<E, double>)
+    return s.f64;
+  else if constexpr (std::is_same_v<E, std::int32_t>)
+    return s.i32;
+  else if constexpr (std::is_same_v<E, std::int64_t>)
+    return s.i64;
+  else
+    return s.i8;
+}
+template <class E>
+const auto& snapshot_map(const Snapshot& s) {
+  return snapshot_map<E>(const_cast<Snapshot&>(s));
+}
+
+/// The dataset of a checkpointed column: a built-in one's own, "parcels/attached_<name>" for
+/// an attached one.
+std::string checkpoint_name(const ParcelColumnSpec& c) {
+  return c.checkpoint_name.empty() ? "parcels/attached_" + c.name : c.checkpoint_name;
 }
 
 const char* const kPrimitiveNames[5] = {"rho", "u", "v", "p", "T"};
 
 /// Checkpoint group of an observer's state.
-std::string observer_prefix(const std::string& key) { return "insitu/" + key + "/"; }
+std::string observer_prefix(const std::string& key) {
+  return "insitu/" + key + "/";
+}
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -52,45 +62,43 @@ Snapshot Simulation::snapshot() const {
   s.i64["run/step"] = {step_};
   s.i64["run/next_output"] = {next_output_};
   // Gas: every field step() reads, ghosts included (1-D, row-major (ny + 2g) x (nx + 2g)).
-  s.i64["gas/shape"] = {whole_grid_.ny() + 2 * whole_grid_.ghosts(), whole_grid_.nx() + 2 * whole_grid_.ghosts()};
+  s.i64["gas/shape"] = {whole_grid_.ny() + 2 * whole_grid_.ghosts(),
+                        whole_grid_.nx() + 2 * whole_grid_.ghosts()};
   // A decomposed run gathers the whole grid on rank 0 and writes the same checkpoint as one
   // rank would: it restarts on any number of ranks. The other ranks' snapshots stop here.
   gather_gas(true);
   if (decomposed_ && !comm_->is_root()) return s;
-  GasSolver& gas = const_cast<GasSolver&>(decomposed_ ? *whole_gas_ : *gas_);  // read only; the accessors are non-const
+  GasSolver& gas = const_cast<GasSolver&>(
+      decomposed_ ? *whole_gas_ : *gas_);  // read only; the accessors are non-const
   for (int k = 0; k < 4; ++k) {
     s.f64["gas/conserved_" + std::to_string(k)] = gas.conserved(k).raw();
     s.f64["gas/source_" + std::to_string(k)] = gas.source(k).raw();
   }
   s.f64["gas/porosity"] = gas.porosity().raw();
-  for (int k = 0; k < 5; ++k) s.f64[std::string("gas/") + kPrimitiveNames[k]] = gas.primitive_field(k).raw();
+  for (int k = 0; k < 5; ++k)
+    s.f64[std::string("gas/") + kPrimitiveNames[k]] = gas.primitive_field(k).raw();
   for (const auto& o : observers_) {
-    if (const std::string key = o->state_key(); !key.empty()) o->save_state(s, observer_prefix(key));
+    if (const std::string key = o->state_key(); !key.empty())
+      o->save_state(s, observer_prefix(key));
   }
   if (!parcels_) return s;
 
   // A decomposed run writes the gathered parcels (gather_gas above): the one-rank system.
   const ParcelSystem& p = decomposed_ ? *whole_parcels_ : *parcels_;
-  for (const auto& [name, v] : parcel_doubles(p)) s.f64["parcels/" + name] = *v;
-  s.i32["parcels/id"] = p.id;
+  p.for_each_column([&](const ParcelColumnSpec& c, const auto& v) {
+    using E = typename std::remove_reference_t<decltype(v)>::value_type;
+    if (c.checkpointed) snapshot_map<E>(s)[checkpoint_name(c)].assign(v.begin(), v.end());
+  });
+  s.f64["parcels/nbr_delta"] = p.nbr_delta;
   s.i32["parcels/nbr_offset"] = p.nbr_offset;
   s.i32["parcels/nbr_index"] = p.nbr_index;
   s.i8["parcels/nbr_image"] = p.nbr_image;
   const ParcelInternals in = p.internals();
-  s.f64["dem/inv_mass_real"] = in.inv_mass_real;
-  s.f64["dem/inv_inertia_real"] = in.inv_inertia_real;
-  s.f64["dem/x_build"] = in.x_build;
-  s.f64["dem/y_build"] = in.y_build;
-  s.f64["dem/half_skin"] = in.half_skin;
-  s.i8["dem/wall_mask"].assign(in.wall_mask.begin(), in.wall_mask.end());
   s.f64["dem/time"] = {in.time};
   s.f64["dem/gravity"] = {in.gravity_x, in.gravity_y};
   s.i64["dem/needs_rebuild"] = {in.needs_rebuild ? 1 : 0};
   s.i64["dem/steps"] = {in.steps};
   s.i64["dem/rebuilds"] = {in.rebuilds};
-  for (std::size_t k = 0; k < p.attached_count(); ++k) {
-    if (p.attached_spec(k).checkpointed) s.f64["parcels/attached_" + p.attached_spec(k).name] = p.attached(k);
-  }
   s.f64["coupling/alpha_p"] = decomposed_ ? whole_alpha_p_->raw() : coupling_->alpha_p().raw();
   s.i64["coupling/rows_touched"] = {decomposed_ ? whole_rows_touched_ : coupling_->rows_touched()};
   s.f64["coupling/rest_reference"] = {coupling_->rest_pressure(), coupling_->rest_temperature()};
@@ -99,7 +107,8 @@ Snapshot Simulation::snapshot() const {
 
 void Simulation::restore(const Snapshot& s, const std::string& previous_output_dir) {
   const auto shape = snapshot_array(s.i64, "gas/shape", 2);
-  if (shape[0] != whole_grid_.ny() + 2 * whole_grid_.ghosts() || shape[1] != whole_grid_.nx() + 2 * whole_grid_.ghosts()) {
+  if (shape[0] != whole_grid_.ny() + 2 * whole_grid_.ghosts() ||
+      shape[1] != whole_grid_.nx() + 2 * whole_grid_.ghosts()) {
     throw SnapshotError("gas/shape " + std::to_string(shape[0]) + " x " + std::to_string(shape[1]) +
                         " does not match the scene's grid");
   }
@@ -111,7 +120,8 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
   const double t = snapshot_array(s.f64, "run/time", 1)[0];
   const long long step = snapshot_array(s.i64, "run/step", 1)[0];
   long long next_output = snapshot_array(s.i64, "run/next_output", 1)[0];
-  if (!std::isfinite(t) || t < 0.0 || step < 0 || next_output < 1) throw SnapshotError("run time or counters out of range");
+  if (!std::isfinite(t) || t < 0.0 || step < 0 || next_output < 1)
+    throw SnapshotError("run time or counters out of range");
   const std::size_t cells = whole_grid_.size_with_ghosts();
   // The observers first: their state is checked as it is taken, and a failure leaves the
   // simulation untouched (a failed restore ends the program anyway).
@@ -136,7 +146,8 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
     gas_fields[4 + k] = &snapshot_array(s.f64, "gas/source_" + std::to_string(k), cells);
   }
   gas_fields[8] = &snapshot_array(s.f64, "gas/porosity", cells);
-  for (int k = 0; k < 5; ++k) gas_fields[9 + k] = &snapshot_array(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
+  for (int k = 0; k < 5; ++k)
+    gas_fields[9 + k] = &snapshot_array(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
 
   if (parcels_) {
     ParcelSystem& p = *parcels_;
@@ -149,32 +160,41 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
       for (std::size_t k = 0; k < restored.attached_count(); ++k)
         restored.attached(k).assign(n, 0.0);
     }
-    for (const auto& [name, v] : parcel_doubles(restored)) {
-      const std::size_t expected = name == "nbr_delta" ? 0 : name == "wall_delta" ? n * kWallCount : n;
-      *v = snapshot_array(s.f64, "parcels/" + name, expected);
-    }
-    restored.id = snapshot_array(s.i32, "parcels/id", n);
+    // Attached columns a restart needs; checkpoints from before they were kept have none,
+    // which leaves them zero (the rest counts then start anew: exact skipping is unaffected).
+    const bool has_attached = s.f64.count("coupling/rest_reference") != 0;
+    ParcelInternals in;
+    in.needs_rebuild = snapshot_array(s.i64, "dem/needs_rebuild", 1)[0] != 0;
+    restored.for_each_column([&](const ParcelColumnSpec& c, auto& v) {
+      using E = typename std::remove_reference_t<decltype(v)>::value_type;
+      if (!c.checkpointed) return;
+      const std::string name = checkpoint_name(c);
+      const std::size_t rows = n * static_cast<std::size_t>(c.per_parcel);
+      const auto& map = snapshot_map<E>(s);
+      if (c.flow == ColumnFlow::Rebuilt) {
+        // Made by the next rebuild when the checkpoint lacks it (older checkpoints have no skins).
+        const auto it = map.find(name);
+        if (it == map.end() || it->second.size() != rows) {
+          v.clear();
+          in.needs_rebuild = true;
+        } else {
+          v.assign(it->second.begin(), it->second.end());
+        }
+      } else if (c.checkpoint_name.empty() && !has_attached) {
+        std::fill(v.begin(), v.end(), E{});
+      } else {
+        const auto& stored = snapshot_array(map, name, rows);
+        v.assign(stored.begin(), stored.end());
+      }
+    });
+    restored.nbr_delta = snapshot_array(s.f64, "parcels/nbr_delta");
     restored.nbr_offset = snapshot_array(s.i32, "parcels/nbr_offset");
     restored.nbr_index = snapshot_array(s.i32, "parcels/nbr_index");
     restored.nbr_image = snapshot_array(s.i8, "parcels/nbr_image");
-    ParcelInternals in;
-    in.inv_mass_real = snapshot_array(s.f64, "dem/inv_mass_real", n);
-    in.inv_inertia_real = snapshot_array(s.f64, "dem/inv_inertia_real", n);
-    in.x_build = snapshot_array(s.f64, "dem/x_build", n);
-    in.y_build = snapshot_array(s.f64, "dem/y_build", n);
-    const auto& mask = snapshot_array(s.i8, "dem/wall_mask");
-    in.wall_mask.assign(mask.begin(), mask.end());
     in.time = snapshot_array(s.f64, "dem/time", 1)[0];
     const auto& gravity = snapshot_array(s.f64, "dem/gravity", 2);
     in.gravity_x = gravity[0];
     in.gravity_y = gravity[1];
-    in.needs_rebuild = snapshot_array(s.i64, "dem/needs_rebuild", 1)[0] != 0;
-    // Checkpoints before per-parcel skins have none: the list is then rebuilt at the first step.
-    if (const auto hs = s.f64.find("dem/half_skin"); hs != s.f64.end() && hs->second.size() == n) {
-      in.half_skin = hs->second;
-    } else {
-      in.needs_rebuild = true;
-    }
     in.steps = snapshot_array(s.i64, "dem/steps", 1)[0];
     in.rebuilds = snapshot_array(s.i64, "dem/rebuilds", 1)[0];
     // Ids must be a permutation of 0..n-1 (they name the parcels in the outputs).
@@ -189,18 +209,6 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
       restored.restore_internals(in);
     } catch (const std::invalid_argument& e) {
       throw SnapshotError(e.what());
-    }
-    // Attached columns a restart needs; checkpoints from before they were kept have none,
-    // which leaves them zero (the rest counts then start anew: exact skipping is unaffected).
-    const bool has_attached = s.f64.count("coupling/rest_reference") != 0;
-    for (std::size_t k = 0; k < restored.attached_count(); ++k) {
-      if (!restored.attached_spec(k).checkpointed) continue;
-      const std::string name = "parcels/attached_" + restored.attached_spec(k).name;
-      if (has_attached) {
-        restored.attached(k) = snapshot_array(s.f64, name, n);
-      } else {
-        std::fill(restored.attached(k).begin(), restored.attached(k).end(), 0.0);
-      }
     }
     GasParticleCoupling::CarriedState c;
     c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);

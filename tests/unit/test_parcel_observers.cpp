@@ -19,7 +19,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("parcel_observers_" + name, false); }
+fs::path fresh_dir(const std::string& name) {
+  return testing::scratch_dir("parcel_observers_" + name, false);
+}
 
 /// Faces of `cells` cells of 1 cm from x = 0.
 std::vector<double> centimetre_faces(int cells) {
@@ -56,7 +58,7 @@ TEST(ParcelObservers, VtkParcelWriterWritesOneFilePerOutputThroughTheAdaptor) {
     ParcelArraysView v;
     v.count = x.size();
     v.position = {x, y};
-    v.diameter = d;
+    v.add("diameter", d);
     return v;
   });
   writer->on_start(gas.view(0.0, dir));
@@ -67,8 +69,11 @@ TEST(ParcelObservers, VtkParcelWriterWritesOneFilePerOutputThroughTheAdaptor) {
   std::stringstream text;
   text << in.rdbuf();
   const std::string pvd = text.str();
-  const std::regex entry("<DataSet timestep=\"[^\"]+\" part=\"0\" file=\"vtk/parcels_00000[01].vtp\"/>");
-  EXPECT_EQ(std::distance(std::sregex_iterator(pvd.begin(), pvd.end(), entry), std::sregex_iterator()), 2);
+  const std::regex entry(
+      "<DataSet timestep=\"[^\"]+\" part=\"0\" file=\"vtk/parcels_00000[01].vtp\"/>");
+  EXPECT_EQ(
+      std::distance(std::sregex_iterator(pvd.begin(), pvd.end(), entry), std::sregex_iterator()),
+      2);
   EXPECT_TRUE(fs::exists(dir / "vtk" / "parcels_000001.vtp"));
   EXPECT_FALSE(fs::exists(dir / "vtk" / "parcels_000002.vtp"));
 }

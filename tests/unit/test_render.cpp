@@ -1,9 +1,8 @@
 // Offscreen rendering end to end: synthetic gas + parcel series written by the writers,
-// rendered by pvstates/render.py under a private Xvfb (scripts/with-xvfb.sh); the PNGs must exist, have a
-// plausible size and not be a uniform image (pvbatch exits 0 even when loading failed).
+// rendered by pvstates/render.py under a private Xvfb (scripts/with-xvfb.sh); the PNGs must exist,
+// have a plausible size and not be a uniform image (pvbatch exits 0 even when loading failed).
 #include <gtest/gtest.h>
 #include <unistd.h>
-
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
@@ -74,8 +73,8 @@ void write_synthetic_run(const fs::path& dir) {
     ParcelArraysView view;
     view.count = n;
     view.position = {px, py};
-    view.velocity = {vx, vy};
-    view.diameter = d;
+    view.add("velocity", Vec2Columns{vx, vy});
+    view.add("diameter", d);
     parcel_writer.write(view, t);
   }
 }
@@ -102,7 +101,8 @@ long differing_pixels(const fs::path& a, const fs::path& b, int row0 = 0, int ro
     for (int x = 0; x < da[0]; ++x) {
       const vtkIdType p = static_cast<vtkIdType>(row) * da[0] + x;
       bool same = true;
-      for (int ch = 0; ch < std::min(nc, 3); ++ch) same = same && pa->GetValue(p * nc + ch) == pb->GetValue(p * nc + ch);
+      for (int ch = 0; ch < std::min(nc, 3); ++ch)
+        same = same && pa->GetValue(p * nc + ch) == pb->GetValue(p * nc + ch);
       n += !same;
     }
   }
@@ -168,9 +168,9 @@ class Render : public ::testing::Test {
       FAIL() << "Xvfb and pvbatch are needed for offscreen rendering; install them with "
                 "scripts/install-deps.sh (packages xvfb, xauth, paraview, python3-paraview)";
     // Each test its own folder: the shipped state must find data away from where it was saved.
-    dir_ = testing::scratch_dir(std::string("render_") +
-                                    ::testing::UnitTest::GetInstance()->current_test_info()->name(),
-                                false);
+    dir_ = testing::scratch_dir(
+        std::string("render_") + ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+        false);
     write_synthetic_run(dir_);
   }
   void TearDown() override {
@@ -183,8 +183,9 @@ class Render : public ::testing::Test {
     const std::string script = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/render.py";
     const fs::path log = dir_ / "render.log";
     const auto start = std::chrono::steady_clock::now();
-    const std::string command = "bash " + std::string(DUSTLIFT_SOURCE_DIR) + "/scripts/with-xvfb.sh pvbatch " + script +
-                                " " + dir_.string() + " " + extra + " > " + log.string() + " 2>&1";
+    const std::string command = "bash " + std::string(DUSTLIFT_SOURCE_DIR) +
+                                "/scripts/with-xvfb.sh pvbatch " + script + " " + dir_.string() +
+                                " " + extra + " > " + log.string() + " 2>&1";
     const int status = std::system(command.c_str());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -213,7 +214,8 @@ TEST_F(Render, PressureWithParcelsAndVorticityPngsAreNotBlank) {
   // The state a run folder gets names its data without the folder, so it opens anywhere.
   const std::string state = read_text(dir_ / "pressure_parcels.pvsm");
   EXPECT_NE(state.find("value=\"gas.pvd\""), std::string::npos);
-  EXPECT_EQ(state.find(dir_.string()), std::string::npos) << "no absolute path of this run in the state";
+  EXPECT_EQ(state.find(dir_.string()), std::string::npos)
+      << "no absolute path of this run in the state";
 }
 
 TEST_F(Render, ShippedStateHasRelativePathsALiveTimeLabelAndADataDrivenRange) {
@@ -222,36 +224,41 @@ TEST_F(Render, ShippedStateHasRelativePathsALiveTimeLabelAndADataDrivenRange) {
   EXPECT_NE(xml.find("<Element index=\"0\" value=\"gas.pvd\"/>"), std::string::npos);
   EXPECT_NE(xml.find("<Element index=\"0\" value=\"parcels.pvd\"/>"), std::string::npos);
   EXPECT_FALSE(std::regex_search(xml, std::regex("value=\"/[A-Za-z]"))) << "no absolute path";
-  EXPECT_NE(xml.find("type=\"PythonAnnotation\""), std::string::npos) << "a label that follows the time";
+  EXPECT_NE(xml.find("type=\"PythonAnnotation\""), std::string::npos)
+      << "a label that follows the time";
   EXPECT_EQ(xml.find("t = 0.0500 ms"), std::string::npos) << "no fixed time text";
   // AutomaticRescaleRangeMode 3: "Clamp and update every timestep".
-  EXPECT_NE(xml.find("AutomaticRescaleRangeMode\" number_of_elements=\"1\">\n        <Element index=\"0\" value=\"3\"/>"),
+  EXPECT_NE(xml.find("AutomaticRescaleRangeMode\" number_of_elements=\"1\">\n        <Element "
+                     "index=\"0\" value=\"3\"/>"),
             std::string::npos);
   // Rendered with another run's data at each of its times: the images change with time,
   // the label too (its rows at the top of the image).
   render("--state " + state + " --all");
   // Saved from a run that ended at 2e-5 s, its animation runs to this run's last time.
-  EXPECT_NE(read_log(dir_ / "render.log").find("state: 2 times from 0 to 5e-05 s; animation from 0 to 5e-05 s"),
+  EXPECT_NE(read_log(dir_ / "render.log")
+                .find("state: 2 times from 0 to 5e-05 s; animation from 0 to 5e-05 s"),
             std::string::npos)
       << read_log(dir_ / "render.log");
-  const fs::path first = dir_ / "figures" / "state_000000.png", last = dir_ / "figures" / "state_000001.png";
+  const fs::path first = dir_ / "figures" / "state_000000.png",
+                 last = dir_ / "figures" / "state_000001.png";
   expect_rendered(first);
   expect_rendered(last);
   const long changed = differing_pixels(first, last), label = differing_pixels(first, last, 0, 30);
-  std::cout << "shipped state: " << changed << " pixels differ between t = 0 and t = 5e-5 s, " << label
-            << " of them in the label rows\n";
+  std::cout << "shipped state: " << changed << " pixels differ between t = 0 and t = 5e-5 s, "
+            << label << " of them in the label rows\n";
   EXPECT_GT(changed, 20000);
   EXPECT_GT(label, 20);
 }
-
 
 TEST_F(Render, RunSceneScriptTakesPathsRelativeToTheCallersFolder) {
   // scene and output folder given relative to where the user stands, not to the repository.
   const fs::path cwd = dir_ / "user";
   fs::create_directories(cwd);
-  fs::copy_file(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml", cwd / "tube.toml");
-  const std::string command = "cd " + cwd.string() + " && bash " + std::string(DUSTLIFT_SOURCE_DIR) +
-                              "/scripts/run-scene.sh tube.toml out --set grid.x.cells=100 --threads 1 > script.log 2>&1";
+  fs::copy_file(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/sod.toml",
+                cwd / "tube.toml");
+  const std::string command =
+      "cd " + cwd.string() + " && bash " + std::string(DUSTLIFT_SOURCE_DIR) +
+      "/scripts/run-scene.sh tube.toml out --set grid.x.cells=100 --threads 1 > script.log 2>&1";
   const int status = std::system(command.c_str());
   EXPECT_EQ(status, 0) << read_text(cwd / "script.log");
   EXPECT_TRUE(fs::exists(cwd / "out" / "gas.pvd"));

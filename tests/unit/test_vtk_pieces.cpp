@@ -35,7 +35,9 @@ namespace {
 namespace fs = std::filesystem;
 using testing::synthetic_gas;
 
-fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("test_" + name); }
+fs::path fresh_dir(const std::string& name) {
+  return testing::scratch_dir("test_" + name);
+}
 
 /// Columns [i0, i1) of `whole` as a piece of their own.
 GasCellArrays columns_of(const GasCellArrays& whole, std::size_t i0, std::size_t i1) {
@@ -153,23 +155,24 @@ TEST(ParcelPieces, ARanksOwnParcelsAreItsTableWithoutGhostsAndAnEmptyPieceReads)
   ParcelArraysView all;
   all.count = 5;
   all.position = {x, y};
-  all.velocity = {w, x};
-  all.diameter = w;
+  all.add("velocity", Vec2Columns{w, x});
+  all.add("diameter", w);
   all.id = id;
-  all.extra.push_back({"charge", y});
+  all.add("charge", y);
   const std::vector<std::uint8_t> ghost{0, 1, 0, 1, 0};
   ParcelArraysCopy store;
   const ParcelArraysView own = kept_rows(all, ghost, store);
   ASSERT_EQ(own.count, 3u);
   EXPECT_EQ(std::vector<double>(own.position.x.begin(), own.position.x.end()),
             (std::vector<double>{0.1, 0.3, 0.5}));
-  EXPECT_EQ(std::vector<double>(own.velocity.y.begin(), own.velocity.y.end()),
+  ASSERT_NE(own.find("velocity"), nullptr);
+  EXPECT_EQ(std::vector<double>(own.find("velocity")->y.begin(), own.find("velocity")->y.end()),
             (std::vector<double>{0.1, 0.3, 0.5}));
   EXPECT_EQ(std::vector<std::int32_t>(own.id.begin(), own.id.end()),
             (std::vector<std::int32_t>{4, 3, 2}));
-  ASSERT_EQ(own.extra.size(), 1u);
-  EXPECT_EQ(own.extra[0].values[2], 5.0);
-  EXPECT_TRUE(own.temperature.empty());  // absent stays absent
+  ASSERT_NE(own.find("charge"), nullptr);
+  EXPECT_EQ(own.find("charge")->x[2], 5.0);
+  EXPECT_EQ(own.find("temperature"), nullptr);  // absent stays absent
   EXPECT_THROW(kept_rows(all, std::vector<std::uint8_t>{0, 1}, store), std::invalid_argument);
 
   // Piece 0 holds the own rows, piece 1 no parcel at all (a rank whose parcels all left).

@@ -2,15 +2,14 @@
 // the right tuple and component counts, values round-trip; the .pvd lists files and times.
 #include <gtest/gtest.h>
 #include <unistd.h>
-
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkFieldData.h>
 #include <vtkPolyData.h>
-#include <vtkStringArray.h>
 #include <vtkRectilinearGrid.h>
+#include <vtkStringArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLRectilinearGridReader.h>
 
@@ -33,7 +32,9 @@ namespace {
 
 using testing::synthetic_gas;
 
-std::filesystem::path fresh_dir(const std::string& name) { return testing::scratch_dir("test_" + name); }
+std::filesystem::path fresh_dir(const std::string& name) {
+  return testing::scratch_dir("test_" + name);
+}
 
 std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
@@ -123,7 +124,8 @@ TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
   u(-1, 0) = 1e9;  // ghosts must not leak into the output
   const GasPrimitives prims{&rho, &u, &v, &p, &T, &ag};
   GasCellArrays out;
-  gather_gas_cells(grid, prims, nullptr, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
+  gather_gas_cells(
+      grid, prims, nullptr, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
   ASSERT_EQ(out.nx(), 4u);
   ASSERT_EQ(out.ny(), 3u);
   EXPECT_EQ(out.x_nodes, grid.x().interior_faces());
@@ -145,15 +147,15 @@ TEST(VtkParcelWriter, PolyDataRoundTripsEveryArray) {
   ParcelArraysView view;
   view.count = n;
   view.position = {a[0], a[1]};
-  view.velocity = {a[2], a[3]};
-  view.angular_velocity = a[4];
-  view.temperature = a[5];
-  view.diameter = a[6];
-  view.initial_position = {a[7], a[8]};
-  view.force_contact = {a[9], a[10]};
-  view.force_drag = {a[11], a[12]};
-  view.force_magnus = {a[13], a[14]};
-  view.force_pressure = {a[15], a[16]};
+  view.add("velocity", Vec2Columns{a[2], a[3]});
+  view.add("angular_velocity", a[4]);
+  view.add("temperature", a[5]);
+  view.add("diameter", a[6]);
+  view.add("initial_position", Vec2Columns{a[7], a[8]});
+  view.add("force_contact", Vec2Columns{a[9], a[10]});
+  view.add("force_drag", Vec2Columns{a[11], a[12]});
+  view.add("force_magnus", Vec2Columns{a[13], a[14]});
+  view.add("force_pressure", Vec2Columns{a[15], a[16]});
   const auto path = (fresh_dir("vtp") / "p.vtp").string();
   write_parcels_vtp(view, path);
 
@@ -192,7 +194,7 @@ TEST(VtkParcelWriter, IdExtraColumnsAndFieldDataSayWhatTheFileIs) {
   view.count = 3;
   view.position = {x, y};
   view.id = id;
-  view.extra.push_back({"gas_rotation", extra});
+  view.add("gas_rotation", extra);
   const auto path = (fresh_dir("vtp_id") / "p.vtp").string();
   write_parcels_vtp(view, path, VtkFileInfo{2.5e-5, "0.1.0 (git test)", "dustlift run s.toml"});
   vtkNew<vtkXMLPolyDataReader> reader;
@@ -202,7 +204,8 @@ TEST(VtkParcelWriter, IdExtraColumnsAndFieldDataSayWhatTheFileIs) {
   vtkDataArray* ids = poly->GetPointData()->GetArray("id");
   ASSERT_NE(ids, nullptr);
   EXPECT_EQ(ids->GetDataType(), VTK_INT);
-  for (vtkIdType k = 0; k < 3; ++k) EXPECT_EQ(ids->GetComponent(k, 0), id[static_cast<std::size_t>(k)]);
+  for (vtkIdType k = 0; k < 3; ++k)
+    EXPECT_EQ(ids->GetComponent(k, 0), id[static_cast<std::size_t>(k)]);
   expect_array(poly->GetPointData()->GetArray("gas_rotation"), extra, "gas_rotation");
   vtkFieldData* fd = poly->GetFieldData();
   ASSERT_NE(fd->GetArray("TimeValue"), nullptr);
@@ -213,7 +216,7 @@ TEST(VtkParcelWriter, IdExtraColumnsAndFieldDataSayWhatTheFileIs) {
   ASSERT_NE(command, nullptr);
   EXPECT_EQ(version->GetValue(0), "0.1.0 (git test)");
   EXPECT_EQ(command->GetValue(0), "dustlift run s.toml");
-  view.extra.front().values = std::span<const double>(extra).first(2);
+  view.arrays.front().x = std::span<const double>(extra).first(2);
   EXPECT_THROW(write_parcels_vtp(view, path), std::invalid_argument);
 }
 
@@ -222,7 +225,7 @@ TEST(VtkParcelWriter, OptionalArraysAreOmittedAndWrongLengthsRejected) {
   ParcelArraysView view;
   view.count = 3;
   view.position = {x, y};
-  view.diameter = d;
+  view.add("diameter", d);
   const auto path = (fresh_dir("vtp_min") / "p.vtp").string();
   write_parcels_vtp(view, path);
   vtkNew<vtkXMLPolyDataReader> reader;
@@ -231,7 +234,7 @@ TEST(VtkParcelWriter, OptionalArraysAreOmittedAndWrongLengthsRejected) {
   EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 3);
   EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNumberOfArrays(), 1);
   std::vector<double> short_t{300.0};
-  view.temperature = short_t;
+  view.add("temperature", short_t);
   EXPECT_THROW(write_parcels_vtp(view, path), std::invalid_argument);
 }
 
@@ -249,8 +252,8 @@ TEST(PvdCollection, ListsEveryFileWithItsTimeAndReplacesARepeatedTime) {
   const std::string text = read_text(dir / "parcels.pvd");
   const std::regex entry("<DataSet timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"/>");
   std::vector<std::pair<double, std::string>> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator();
-       ++it)
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry);
+       it != std::sregex_iterator(); ++it)
     found.emplace_back(std::stod((*it)[1]), (*it)[2]);
   ASSERT_EQ(found.size(), 3u);
   EXPECT_EQ(found[0], std::make_pair(0.0, std::string("vtk/parcels_000000.vtp")));
