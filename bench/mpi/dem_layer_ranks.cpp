@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bench/dem_reference_layer.hpp"
+#include "solver/parallel/parcel_slabs.hpp"
 #include "solver/parallel/communicator.hpp"
 
 using namespace dustlift;
@@ -48,20 +49,21 @@ int main(int argc, char** argv) {
   const DemConfig cfg = reference_layer_config(false);
   ParcelSystem s = reference_layer(false);
   const int ranks = world->size();
+  ParcelSlabs slabs(*world);
   if (ranks > 1) {
     std::vector<double> cuts;
     for (int q = 1; q < ranks; ++q) cuts.push_back(0.4 * q / ranks);
-    s.set_decomposition(*world, cuts);
+    slabs.split(s, cuts);
   }
   const double dt = s.stable_time_step();
   s.step(dt);  // first neighbour build (and the split) outside the timing
-  const ParcelSystem::DecompositionCounters before = s.decomposition_counters();
+  const ParcelSlabs::Counters before = slabs.counters();
   world->barrier();
   const auto t0 = std::chrono::steady_clock::now();
   for (int n = 0; n < steps; ++n) s.step(dt);
   world->barrier();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const ParcelSystem::DecompositionCounters& c = s.decomposition_counters();
+  const ParcelSlabs::Counters& c = slabs.counters();
   const long long total = world->sum(static_cast<long long>(s.owned_count()));
   const std::vector<double> mine = {
       static_cast<double>(s.owned_count()),

@@ -6,7 +6,6 @@
 
 #include "solver/dem/contact_law.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
 
@@ -42,10 +41,11 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
   }
   const ScopedTimer t(timings_.integrate);
   integrate(dt, store_parts);
-  if (comm_ != nullptr) {
-    // Ghosts take their owners' new states; a rebuild anywhere is a rebuild everywhere.
-    refresh_ghost_kinematics();
-    needs_rebuild_ = comm_->any(needs_rebuild_);
+  if (ranks_ != nullptr) {
+    // Copies take their owners' new states; a rebuild anywhere is a rebuild everywhere.
+    std::vector<double>* const kinematics[] = {&x, &y, &vx, &vy, &omega};
+    ranks_->refresh_copies(*this, kinematics);
+    needs_rebuild_ = ranks_->any(needs_rebuild_);
   }
   parcel_substeps_ += static_cast<long long>(active_count());
   time_ += dt;

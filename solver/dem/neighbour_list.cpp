@@ -12,7 +12,6 @@
 
 #include "solver/dem/parcel_system.hpp"
 #include "solver/dem/permute.hpp"
-#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
 
@@ -24,7 +23,7 @@ void ParcelSystem::update_cell_geometry() {
   const double* dia = diameter.data();
 #pragma omp parallel for schedule(static) reduction(max : d_max) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) d_max = std::max(d_max, dia[i]);
-  if (comm_ != nullptr) d_max = -comm_->min(-d_max);  // the same cells on every rank
+  if (ranks_ != nullptr) d_max = ranks_->max(d_max);  // the same cells on every rank
   const double cutoff = d_max + skin_;
   radius_max_ = 0.5 * d_max;
   cutoff_ = cutoff;
@@ -125,8 +124,8 @@ void ParcelSystem::rebuild_neighbours() {
   update_cell_geometry();
   // A decomposed run first moves parcels to their owners and renews the ghosts; the history
   // travels with the parcels (redistribute leaves it in old_*).
-  const bool distributed = comm_ != nullptr;
-  const bool had_list = distributed ? redistribute() : nbr_offset.size() == size() + 1;
+  const bool distributed = ranks_ != nullptr;
+  const bool had_list = distributed ? ranks_->redistribute(*this) : nbr_offset.size() == size() + 1;
   const std::size_t n = size();
   // Keep the old list's history keyed by partner id (ids survive the re-sort).
   if (had_list && !distributed) {
@@ -142,7 +141,7 @@ void ParcelSystem::rebuild_neighbours() {
   constexpr long long kSortEvery = 8;
   const bool permuted = !had_list || rebuilds_ % kSortEvery == 0;
   sort_by_cell(permuted);  // old_index_[new] = old
-  if (distributed) after_distributed_sort(permuted);
+  if (distributed) ranks_->after_sort(*this, old_index_, permuted);
 
   const DemDomain& d = cfg_.domain;
   const bool periodic = d.periodic_x;
@@ -162,7 +161,7 @@ void ParcelSystem::rebuild_neighbours() {
     half_skin[i] = s;
     s_max = std::max(s_max, s);
   }
-  if (distributed) s_max = -comm_->min(-s_max);
+  if (distributed) s_max = ranks_->max(s_max);
   fast_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (half_skin[i] > s_base) fast_.push_back(static_cast<std::int32_t>(i));

@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
 
@@ -140,7 +139,7 @@ double ParcelSystem::stable_time_step() const {
   const ContactParams& a = cfg_.contact;
   const ContactParams& b = cfg_.wall_contact;
   const double k_max = std::max({a.k_n, a.k_t, b.k_n, b.k_t});
-  if (comm_ != nullptr) m_min = comm_->min(m_min);  // the same sub-steps on every rank
+  if (ranks_ != nullptr) m_min = ranks_->min(m_min);  // the same sub-steps on every rank
   return cfg_.courant * std::sqrt(m_min / k_max);
 }
 

@@ -21,11 +21,10 @@
 
 #include "solver/core/phase_timer.hpp"
 #include "solver/dem/dem_config.hpp"
+#include "solver/dem/parcel_ranks.hpp"
 #include "solver/dem/parcel_table.hpp"
 
 namespace dustlift {
-
-class Communicator;
 
 /// Below this many parcels the loops run on one thread: a parallel region costs more than
 /// the work (and on a shared machine, threads waiting for a busy core cost far more).
@@ -150,34 +149,25 @@ class ParcelSystem : public ParcelTable {
   /// Parcels the current sub-steps run over: [0, active_count()).
   std::size_t active_count() const { return active_count_ < size() ? active_count_ : size(); }
 
-  // ---- Decomposition over x-slabs of MPI ranks (issue 12, docs/parallel.md) ----
-  /// Splits the parcels over the ranks: this rank keeps those whose neighbour-cell column
-  /// lies between the cuts (x of the boundaries between ranks 0|1, 1|2, ...; a cut is rounded
-  /// to the nearest cell face) and ghost copies of the others' parcels within contact reach
-  /// of its columns (plus the ghost margin) and of every listed partner of its own. Every
-  /// rank must hold the same table when this is called (each builds the same layer, or reads
-  /// the same checkpoint); a system between two rebuilds keeps its lists. The results are
-  /// bitwise those of one rank: every loop runs in the one-rank parcel order (`order_key`),
-  /// the rebuild, sort and sub-step decisions are collective, and ghost states are
-  /// refreshed every sub-step. Parcels change owner at rebuilds, with their contact
-  /// history. Not for periodic x. `comm` must outlive this system.
-  void set_decomposition(const Communicator& comm, std::vector<double> cuts);
-  /// New cuts, applied at the next rebuild (the parcels move then).
-  void set_cuts(std::vector<double> cuts);
-  /// Ghosts also within this distance (m) beyond the contact reach, from the next rebuild:
-  /// what the coupling's stencils need around a cut.
-  void set_ghost_margin(double margin) { ghost_margin_ = margin; }
-  /// Collective: the ghosts take their owners' values of these attached columns now (the
-  /// coupling's samples and exchange sums, which the owners compute).
+  // ---- Parcels split over ranks (solver/parallel/parcel_slabs.hpp splits them) ----
+  bool decomposed() const { return ranks_ != nullptr; }
+  /// Collective when split: the copies take their owners' values of these attached columns
+  /// now (the coupling's samples and exchange sums, which the owners compute).
   void refresh_ghost_columns(std::span<const ParcelColumn> columns);
-  /// Collective in decomposed runs: the lowest-numbered rank's non-empty text ("" when none),
-  /// so that a failure one rank finds stops every rank with the same message.
-  std::string first_failure(const std::string& local) const;
-  /// Collective in decomposed runs: the largest value over the ranks (the value otherwise).
-  double max_over_ranks(double value) const;
+  /// Collective when split: the lowest-numbered rank's non-empty text ("" when none), so
+  /// that a failure one rank finds stops every rank with the same message.
+  std::string first_failure(const std::string& local) const {
+    return ranks_ != nullptr ? ranks_->first_nonempty(local) : local;
+  }
+  /// Collective when split: the largest value over the ranks (the value otherwise).
+  double max_over_ranks(double value) const { return ranks_ != nullptr ? ranks_->max(value) : value; }
   /// Element by element, in place (one message for all of them).
-  void max_over_ranks(std::span<double> values) const;
-  bool decomposed() const { return comm_ != nullptr; }
+  void max_over_ranks(std::span<double> values) const {
+    if (ranks_ == nullptr) return;
+    for (double& v : values) v = -v;
+    ranks_->min_each(values);
+    for (double& v : values) v = -v;
+  }
   /// Back to a one-rank system's bookkeeping (the table is left as it is): a restart first
   /// takes the whole checkpointed system into a copy of this one, then splits it again.
   void drop_decomposition();
@@ -187,12 +177,13 @@ class ParcelSystem : public ParcelTable {
   std::span<const std::uint8_t> ghost_flags() const { return rank_copy; }
   /// Parcels this rank owns (size() in a one-rank run).
   std::size_t owned_count() const;
-  /// Appends every owned parcel's full state (all columns, wall history and its contact
-  /// history as partner ids and elongations) to `out`, in parcel order: what moves with a
-  /// parcel to another rank, and what a checkpoint gathers.
-  /// Without the history (`with_history` false) the packed parcels carry no contact
-  /// history (an observer's view: cheaper to gather and to assign).
-  /// `keep`, when given, picks the parcels (by index) to pack.
+
+  // ---- Whole parcels between tables (parcel_packing.cpp) ----
+  /// Appends every owned parcel's full state (all columns and its contact history as
+  /// partner ids and elongations) to `out`, in parcel order: what moves with a parcel to
+  /// another rank, and what a checkpoint gathers. Without the history (`with_history`
+  /// false) the packed parcels carry no contact history (an observer's view: cheaper to
+  /// gather and to assign). `keep`, when given, picks the parcels (by index) to pack.
   void pack_owned(std::vector<double>& out, bool with_history = true,
                   const std::function<bool(std::size_t)>& keep = {}) const;
   /// A one-rank system from packed parcels (pack_owned of every rank, any order): sorted by
@@ -200,15 +191,14 @@ class ParcelSystem : public ParcelTable {
   /// continues as the decomposed run would (checkpoints, tests). The attached columns must
   /// be attached (same specs, same order) before.
   void assign_packed(const std::vector<std::vector<double>>& pieces);
-  /// Exchange counters of the decomposition: parcels sent to another owner (and of them,
-  /// those touching another parcel or a wall with a tangential elongation to carry), ghost
-  /// copies sent at rebuilds, doubles and messages sent, and the seconds spent in them.
-  struct DecompositionCounters {
-    long long migrated = 0, migrated_with_history = 0, ghosts_sent = 0, doubles_sent = 0,
-              messages = 0;
-    double seconds = 0.0;
-  };
-  const DecompositionCounters& decomposition_counters() const { return counters_; }
+  /// One parcel packed (pack_row and its contact history).
+  void pack_parcel(std::size_t i, bool with_history, std::vector<double>& out) const;
+  /// Appends a packed parcel; returns the next row; its history goes to the carried history.
+  const double* append_packed(const double* row, bool copy);
+  /// New row k = old row source[k], for every moved column and the carried history.
+  void reorder_parcels(const std::vector<std::int32_t>& source);
+  /// Sorts the table by order key; returns the rows' old indices in their new order.
+  std::vector<std::int32_t> sort_table_by_key();
 
   /// Checkpoint access to the DEM's counters (see ParcelInternals).
   ParcelInternals internals() const;
@@ -238,35 +228,7 @@ class ParcelSystem : public ParcelTable {
   /// The neighbour cells (size >= the largest cutoff, over every rank's parcels).
   void update_cell_geometry();
   void sort_by_cell(bool permute_data);
-  // Decomposition (parcel_decomposition.cpp).
-  /// Before a rebuild: parcels to their owners with their contact history, fresh ghosts,
-  /// the table in order-key order and the carried history in old_offset_/old_partner_id_/
-  /// old_delta_. Returns whether there was a list before (on every rank alike).
-  bool redistribute();
-  /// set_decomposition's split of a table every rank holds alike.
-  void split_replicated();
-  /// Each rank's first cell column (first_column_) from the cuts.
-  void update_first_columns();
-  /// Collective: how many cell columns beyond a rank's own its ghosts reach.
-  int ghost_reach_columns() const;
-  /// After the rebuild's sort: the exchange lists follow the parcels, and a permuting sort
-  /// gives the owned parcels their new order keys and sends them to the ghosts.
-  void after_distributed_sort(bool permuted);
-  /// Every sub-step: the owners' positions, velocities and spins to their ghosts.
-  void refresh_ghost_kinematics();
-  /// The owners' values of these per-parcel arrays to their ghosts (one message per neighbour).
-  void refresh_ghosts(std::span<std::vector<double>* const> columns);
-  /// new table row k = old row source[k], for every per-parcel array a rebuild keeps.
-  void reorder_parcels(const std::vector<std::int32_t>& source);
-  /// The exchange lists after a reorder (old_of_new[k]: the old index of row k).
-  void follow_rows(const std::vector<std::int32_t>& old_of_new);
-  /// Sorts the table by order key; returns the rows' old indices in their new order.
-  std::vector<std::int32_t> sort_table_by_key();
-  void pack_parcel(std::size_t i, bool with_history, std::vector<double>& out) const;
-  /// Appends a packed parcel; returns the next row; its history goes to hist_* scratch.
-  const double* append_packed(const double* row, bool ghost);
-  int owner_of_column(int cx) const;
-  int cell_column(double px) const;
+  friend class ParcelSlabs;  // moves the rows and the carried history at rebuilds
   void compute_contacts(double dt);
   void integrate(double dt, bool store_parts);
   void integrate_forced(double dt, bool store_parts);
@@ -332,17 +294,10 @@ class ParcelSystem : public ParcelTable {
   std::vector<std::int32_t> old_offset_, old_partner_id_;
   std::vector<double> old_delta_;
 
-  // Decomposition state.
-  const Communicator* comm_ = nullptr;
-  std::vector<double> cuts_;
-  std::vector<int> first_column_;  ///< of each rank's cell columns, plus the end
-  double ghost_margin_ = 0.0;      ///< m, ghosts beyond the contact reach (set_ghost_margin)
-  std::vector<std::vector<std::int32_t>> send_ghosts_;  ///< per rank: owned parcels it copies
-  std::vector<std::vector<std::int32_t>> recv_ghosts_;  ///< per rank: its ghosts here, same order
-  std::vector<std::vector<double>> send_buf_, recv_buf_;
+  ParcelRanks* ranks_ = nullptr;  ///< the split over ranks; null on one rank
+  // The carried history of the rows while parcels move (CSR over the rows, partner ids).
   std::vector<std::int32_t> hist_offset_, hist_partner_;  ///< carried history, per table row
   std::vector<double> hist_delta_;
-  DecompositionCounters counters_;
 };
 
 }  // namespace dustlift

@@ -51,10 +51,10 @@ struct ParcelColumnSpec {
   bool written = false;       ///< written to the .vtp (and published in situ)
   ColumnFlow flow = ColumnFlow::Carried;
   int per_parcel = 1;           ///< values per parcel (the wall history: one per wall)
-  std::string checkpoint_name;  ///< dataset of a checkpointed built-in column
+  std::string checkpoint_name = {};  ///< dataset of a checkpointed built-in column
   /// A written column's point array and component (two columns make one 2-D vector);
   /// "position" is the points themselves.
-  std::string written_as;
+  std::string written_as = {};
   int component = 0;
   ForcePart part = ForcePart::None;  ///< written only when this part is computed
 };

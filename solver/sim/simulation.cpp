@@ -87,8 +87,9 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
     if (decomposed_) {
       // Ghosts also as far as a deposit square reaches beyond the cut.
       total_parcels_ = parcels_->size();
-      parcels_->set_ghost_margin(std::max(scene_.coupling.influence_width, scene_.particles.parcel_diameter));
-      parcels_->set_decomposition(*comm_, parcel_cuts());
+      parcel_slabs_ = std::make_unique<ParcelSlabs>(*comm_);
+      parcel_slabs_->set_copy_margin(std::max(scene_.coupling.influence_width, scene_.particles.parcel_diameter));
+      parcel_slabs_->split(*parcels_, parcel_cuts());
       coupling_->set_slab(whole_grid_, layout_.first_column(), *halo_);
     }
     if (!decomposed_) total_parcels_ = parcels_->size();
@@ -235,7 +236,7 @@ bool Simulation::rebalance() {
     split.drop_decomposition();
     split.assign_packed({parcels_whole});
     take_run_state(split, *parcels_);
-    split.set_decomposition(*comm_, parcel_cuts());
+    parcel_slabs_->split(split, parcel_cuts());
     *parcels_ = std::move(split);
     coupling_->move_to_slab(grid_, layout_.first_column(), *halo_);
     GasParticleCoupling::CarriedState c;
@@ -441,7 +442,7 @@ std::string Simulation::work_summary() const {
     if (parcels_) {
       // Ghost refreshes every sub-step, migrations and ghost copies at rebuilds, the
       // coupling's refreshes; counted since the start of the run.
-      const ParcelSystem::DecompositionCounters& c = parcels_->decomposition_counters();
+      const ParcelSlabs::Counters& c = parcel_slabs_->counters();
       const long long all_steps = std::max<long long>(step_, 1);
       s << "; parcel exchange per rank and step: "
         << static_cast<double>(comm_->sum(c.doubles_sent)) * 8.0 / comm_->size() / all_steps << " bytes in "
@@ -475,7 +476,7 @@ std::string Simulation::work_summary() const {
     s << ", moving slab cuts " << timings_.balance << " s";
     // Per rank: the gas time, and the part of it spent in (or waiting at) the halo exchange.
     const double mine[3] = {timings_.gas, retired_halo_seconds_ + halo_->seconds(),
-                            parcels_ ? parcels_->decomposition_counters().seconds : 0.0};
+                            parcel_slabs_ ? parcel_slabs_->counters().seconds : 0.0};
     std::vector<std::vector<double>> all;
     comm_->gather(mine, all);
     if (comm_->is_root()) {

@@ -10,6 +10,7 @@
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/parallel/communicator.hpp"
+#include "solver/parallel/parcel_slabs.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
@@ -170,6 +171,7 @@ class Simulation {
   /// x of the slab cuts, where the parcels are split too.
   std::vector<double> parcel_cuts() const;
   std::unique_ptr<GasSolver> gas_;
+  std::unique_ptr<ParcelSlabs> parcel_slabs_;      ///< the parcels' split, on several ranks
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
   std::vector<std::unique_ptr<Observer>> observers_;

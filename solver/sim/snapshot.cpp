@@ -216,7 +216,7 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
       std::vector<double> slab;
       extract_slab(c.alpha_p, whole_grid_, layout_, slab);
       c.alpha_p.swap(slab);
-      restored.set_decomposition(*comm_, parcel_cuts());
+      parcel_slabs_->split(restored, parcel_cuts());
     }
     c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
     if (has_attached) {

@@ -14,6 +14,7 @@
 #include "mpi/mpi_test_main.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/parallel/parcel_slabs.hpp"
 #include "solver/parallel/communicator.hpp"
 
 namespace dustlift {
@@ -81,11 +82,12 @@ void add_scene(ParcelSystem& s) {
   s.add_parcel(parcel(6.5e-3, -1.2e-3, -12.0, -2.0));
 }
 
-void run(ParcelSystem& s, int steps, const std::vector<std::pair<int, double>>& moves = {}) {
+void run(ParcelSystem& s, int steps, const std::vector<std::pair<int, double>>& moves = {},
+         ParcelSlabs* slabs = nullptr) {
   const double dt = s.stable_time_step();
   for (int k = 0; k < steps; ++k) {
     for (const auto& [at, cut] : moves) {
-      if (k == at && s.decomposed()) s.set_cuts({cut});
+      if (k == at && slabs != nullptr) slabs->set_cuts({cut});
     }
     s.step(dt);
   }
@@ -142,12 +144,13 @@ TEST(SlabParcels, ABedAcrossTheCutMatchesOneRankBitForBit) {
   constexpr int kSteps = 3000;
   ParcelSystem s(box_config());
   add_scene(s);
-  s.set_decomposition(world(), {kCut});
+  ParcelSlabs slabs(world());
+  slabs.split(s, {kCut});
   run(s, kSteps);
-  const auto& c = s.decomposition_counters();
+  const auto& c = slabs.counters();
   // Parcels left each rank for the other, and ghosts went both ways.
   EXPECT_GT(c.migrated, 0) << "rank " << world().rank();
-  EXPECT_GT(c.ghosts_sent, 0) << "rank " << world().rank();
+  EXPECT_GT(c.copies_sent, 0) << "rank " << world().rank();
   EXPECT_EQ(world().sum(static_cast<long long>(s.owned_count())), 151);
   std::string report;
   EXPECT_EQ(differences_from_one_rank(s, kSteps, {}, report), 0) << report;
@@ -173,11 +176,12 @@ TEST(SlabParcels, ATouchingPairCrossesTheCutEitherWayWithItsHistory) {
        {std::pair<Scene, int>{add_stack_moving_right, 0}, {add_stack_moving_left, 1}}) {
     ParcelSystem s(box_config());
     scene(s);
-    s.set_decomposition(world(), {kCut});
+    ParcelSlabs slabs(world());
+    slabs.split(s, {kCut});
     run(s, kSteps);
     // The rank the pair left handed it over with its floor elongation.
     if (world().rank() == from) {
-      EXPECT_GE(s.decomposition_counters().migrated_with_history, 1) << "from rank " << from;
+      EXPECT_GE(slabs.counters().migrated_with_history, 1) << "from rank " << from;
       EXPECT_EQ(s.owned_count(), 0u) << "from rank " << from;
     }
     std::string report;
@@ -191,8 +195,9 @@ TEST(SlabParcels, MovingCutsChangeNothing) {
   const std::vector<std::pair<int, double>> moves = {{700, 3.6e-3}, {1500, 6.1e-3}, {2000, 4.9e-3}};
   ParcelSystem s(box_config());
   add_scene(s);
-  s.set_decomposition(world(), {kCut});
-  run(s, kSteps, moves);
+  ParcelSlabs slabs(world());
+  slabs.split(s, {kCut});
+  run(s, kSteps, moves, &slabs);
   std::string report;
   EXPECT_EQ(differences_from_one_rank(s, kSteps, moves, report), 0) << report;
 }
@@ -203,8 +208,9 @@ TEST(SlabParcels, ARankWithoutParcelsTakesPart) {
   const std::vector<std::pair<int, double>> moves = {{0, 9.5e-3}};
   ParcelSystem s(box_config());
   add_scene(s);
-  s.set_decomposition(world(), {9.5e-3});
-  run(s, kSteps, moves);
+  ParcelSlabs slabs(world());
+  slabs.split(s, {9.5e-3});
+  run(s, kSteps, moves, &slabs);
   std::string report;
   EXPECT_EQ(differences_from_one_rank(s, kSteps, moves, report), 0) << report;
 }
@@ -222,7 +228,8 @@ TEST(SlabParcels, ASystemSplitBetweenRebuildsContinuesBitwise) {
     s.step(dt);
     ++before;
   }
-  s.set_decomposition(world(), {kCut});
+  ParcelSlabs slabs(world());
+  slabs.split(s, {kCut});
   EXPECT_LT(s.owned_count(), s.size());  // ghosts from the start
   run(s, kAfter);
   std::string report;
@@ -265,8 +272,9 @@ TEST(SlabParcels, AThousandsStrongLayerWithGhostColumnsMatchesOneRank) {
   add_layer(s);
   ASSERT_GT(s.size(), kParallelMinimum);
   const ParcelColumn tag = s.attach_column({"tag", "1", false, false});
-  s.set_ghost_margin(3e-4);
-  s.set_decomposition(world(), {0.02});
+  ParcelSlabs slabs(world());
+  slabs.set_copy_margin(3e-4);
+  slabs.split(s, {0.02});
   const double dt = s.stable_time_step();
   for (int k = 0; k < kSteps; ++k) s.step(dt);
   // A column the owners fill reaches the ghosts.
@@ -308,7 +316,8 @@ TEST(SlabParcels, AThousandsStrongLayerWithGhostColumnsMatchesOneRank) {
 TEST(SlabParcels, AFailureOnOneRankIsEveryRanksMessage) {
   ParcelSystem s(box_config());
   add_scene(s);
-  s.set_decomposition(world(), {kCut});
+  ParcelSlabs slabs(world());
+  slabs.split(s, {kCut});
   const std::string local = world().rank() == 1 ? "parcel id 7: velocity not finite" : "";
   EXPECT_EQ(s.first_failure(local), "parcel id 7: velocity not finite");
 }

@@ -74,8 +74,9 @@ void expect_bitwise_equal(Simulation& a, Simulation& b, const char* what) {
   ASSERT_EQ(p.size(), q.size());
   p.for_each_column_pair(q, [&](const ParcelColumnSpec& c, const auto& mine, const auto& theirs) {
     if constexpr (std::is_same_v<std::decay_t<decltype(mine)>, std::vector<double>>) {
-      if (ParcelTable::is_state(c))
+      if (ParcelTable::is_state(c)) {
         EXPECT_TRUE(same(mine, theirs)) << what << ": parcel column " << c.name;
+      }
     }
   });
   EXPECT_EQ(p.id, q.id) << what;
