@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "insitu/catalyst_adaptor.hpp"
+#include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
 #include "solver/scene/table_reader.hpp"
@@ -64,6 +65,8 @@ class CatalystObserver final : public Observer {
       : config_(scene.insitu.catalyst),
         output_dir_(std::move(output_dir)),
         parcels_of_(std::move(parcels_of)) {
+    frames_ = config_.interval > 0.0 ? Cadence::simulated(config_.interval)
+                                     : Cadence::steps(config_.interval_steps);
     const std::string where = scene.source_file + ": insitu.catalyst: ";
 #ifndef DUSTLIFT_WITH_CATALYST
     throw SceneError(
@@ -103,23 +106,23 @@ class CatalystObserver final : public Observer {
 
   void on_start(const StateView& view) override {
     open(view);
-    next_ = 1;
+    frames_.set_next_index(1);
     deliver(view, false);
   }
   void on_resume(const StateView& view, const std::string&) override {
     // The restored step was delivered (if due) by the run that wrote the checkpoint.
     open(view);
-    if (config_.interval > 0.0) next_ = first_multiple_after(view.time, config_.interval);
+    frames_.start({view.time, view.step, 0.0});
   }
   void on_output(const StateView&) override {}
   bool reads_step(const StateView& view) const override {
     if (at_end(view)) return false;
-    if (config_.interval > 0.0) return view.time >= multiple_time(next_, config_.interval);
-    return view.step % config_.interval_steps == 0;
+    return frames_.due({view.time, view.step, 0.0});
   }
   void on_step(const StateView& view) override {
-    if (!reads_step(view)) return;  // not due, or the end, which on_finish delivers to every pipeline
-    if (config_.interval > 0.0) next_ = first_multiple_after(view.time, config_.interval);
+    if (!reads_step(view))
+      return;  // not due, or the end, which on_finish delivers to every pipeline
+    frames_.done({view.time, view.step, 0.0});
     deliver(view, false);
   }
   void on_finish(const StateView& view) override {
@@ -166,7 +169,7 @@ class CatalystObserver final : public Observer {
     if (!pipelines_ || !pipelines_->wants(view.time, view.step, last)) return;
     const auto t0 = std::chrono::steady_clock::now();
     gather_gas_cells(
-        *view.grid, view.primitives, view.alpha_p,
+        *view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
         [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
     CatalystFrame f;
     f.time = view.time;
@@ -195,7 +198,9 @@ class CatalystObserver final : public Observer {
   CatalystFactory factory_ = nullptr;
   std::unique_ptr<CatalystPipelines> pipelines_;
   GasCellArrays gas_;  // reused: no reallocation after the first frame
-  long long next_ = 1;
+  Field2D vorticity_;  // for a view without the run's derived fields (made by hand)
+  /// insitu.catalyst.interval (simulated s) or interval_steps.
+  Cadence frames_;
   long long gathered_ = 0;
   double gather_seconds_ = 0.0;
 };

@@ -7,12 +7,13 @@
 
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_solver.hpp"
+#include "solver/sim/observer.hpp"
 
 namespace dustlift {
 
 struct GasCellArrays {
-  std::vector<double> x_nodes;  ///< m, nx+1 interior faces
-  std::vector<double> y_nodes;  ///< m, ny+1 interior faces
+  std::vector<double> x_nodes;      ///< m, nx+1 interior faces
+  std::vector<double> y_nodes;      ///< m, ny+1 interior faces
   std::vector<double> density;      ///< kg/m^3
   std::vector<double> velocity_x;   ///< m/s
   std::vector<double> velocity_y;   ///< m/s
@@ -34,15 +35,17 @@ struct GasCellArrays {
   void check_sizes() const;
 };
 
-/// Fills `out` from the primitive fields (interior cells) and computes alpha_p,
-/// vorticity and mach = sqrt(u^2+v^2) / sound_speed(i, j).
+/// Fills `out` from the primitive fields and `vorticity` (interior cells) and computes
+/// alpha_p and mach = sqrt(u^2+v^2) / sound_speed(i, j).
 /// alpha_p: the deposited particle volume fraction, or null to use 1 - alpha_g.
-/// A slab of a decomposed run reads `ghosts_left` / `ghosts_right` (0 or 1) ghost columns at
-/// its cuts, which hold its neighbours' cells, for the x-derivative of the vorticity: its
-/// edge columns then get the whole grid's centred differences (one-sided only at a domain
-/// end), so the pieces of all ranks hold the one-rank values.
 void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
-                      const std::function<double(int, int)>& sound_speed, GasCellArrays& out,
-                      int ghosts_left = 0, int ghosts_right = 0);
+                      const Field2D& vorticity, const std::function<double(int, int)>& sound_speed,
+                      GasCellArrays& out);
+
+/// The vorticity of what the view shows: the run's derived field (made once per step,
+/// StateView::derived), or for a view made by hand, made here into `scratch`. On an MPI
+/// rank's slab the derivatives at the cuts read the ghost columns, which hold the
+/// neighbours' cells, so every piece holds the one-rank values.
+const Field2D& vorticity_of(const StateView& view, Field2D& scratch);
 
 }  // namespace dustlift

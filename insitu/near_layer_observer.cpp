@@ -2,11 +2,11 @@
 #include <algorithm>
 #include <memory>
 
+#include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/series_table.hpp"
-#include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 namespace {
@@ -15,8 +15,13 @@ class NearLayerObserver final : public Observer {
  public:
   explicit NearLayerObserver(NearLayerOptions options)
       : options_(options),
-        table_("near_layer", {{"time", "s"}, {"x", "m"}, {"y", "m"}, {"u", "m/s"}, {"v", "m/s"},
-                              {"vorticity", "1/s"}, {"alpha_p", "1"}}) {}
+        table_("near_layer", {{"time", "s"},
+                              {"x", "m"},
+                              {"y", "m"},
+                              {"u", "m/s"},
+                              {"v", "m/s"},
+                              {"vorticity", "1/s"},
+                              {"alpha_p", "1"}}) {}
 
   // u, v and alpha_p (the gas gathers whole).
   unsigned output_reads() const override { return kReadsGas | kReadsAlphaP; }
@@ -35,13 +40,18 @@ class NearLayerObserver final : public Observer {
       if (y >= options_.y_min && y <= options_.y_max) j0 = std::min(j0, j), j1 = std::max(j1, j);
     }
     if (i1 < i0 || j1 < j0) return;
-    if (vorticity_.size() == 0) vorticity_ = Field2D(g);
-    vorticity_z_rows(g, *p.u, *p.v, j0, j1 + 1, vorticity_);
+    const Field2D& vorticity = vorticity_of(view, vorticity_);
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
-        const double ap = view.alpha_p != nullptr ? (*view.alpha_p)(i, j) : 1.0 - (*p.alpha_g)(i, j);
-        const double row[] = {view.time, g.x().center(i), g.y().center(j), (*p.u)(i, j), (*p.v)(i, j),
-                              vorticity_(i, j), ap};
+        const double ap =
+            view.alpha_p != nullptr ? (*view.alpha_p)(i, j) : 1.0 - (*p.alpha_g)(i, j);
+        const double row[] = {view.time,
+                              g.x().center(i),
+                              g.y().center(j),
+                              (*p.u)(i, j),
+                              (*p.v)(i, j),
+                              vorticity(i, j),
+                              ap};
         table_.append_row(row);
       }
     }

@@ -12,7 +12,11 @@ namespace {
 
 class ProbeObserver final : public Observer {
  public:
-  explicit ProbeObserver(ProbeOptions options) : options_(std::move(options)), table_("probes", columns(options_)) {
+  explicit ProbeObserver(ProbeOptions options)
+      : options_(std::move(options)),
+        table_("probes", columns(options_)),
+        samples_(options_.interval > 0.0 ? Cadence::simulated(options_.interval)
+                                         : Cadence::every_step()) {
     if (options_.probes.empty()) throw std::invalid_argument("ProbeObserver: no probe");
   }
 
@@ -21,7 +25,7 @@ class ProbeObserver final : public Observer {
     write(view);
   }
   bool reads_step(const StateView& view) const override {
-    return options_.interval > 0.0 ? view.time >= multiple_time(next_sample_, options_.interval) : true;
+    return samples_.due({view.time, view.step, 0.0});
   }
   unsigned step_reads() const override { return kReadsGas | kReadsAlphaP; }
   unsigned output_reads() const override { return step_reads(); }
@@ -37,11 +41,11 @@ class ProbeObserver final : public Observer {
   std::string state_key() const override { return "probes"; }
   void save_state(Snapshot& s, const std::string& prefix) const override {
     save_series_state({&table_}, last_time_, sampled_, s, prefix);
-    s.i64[prefix + "next_sample"] = {next_sample_};
+    s.i64[prefix + "next_sample"] = {samples_.next_index()};
   }
   void restore_state(const Snapshot& s, const std::string& prefix) override {
     sampled_ = restore_series_state({&table_}, last_time_, s, prefix);
-    next_sample_ = snapshot_array(s.i64, prefix + "next_sample", 1)[0];
+    samples_.set_next_index(snapshot_array(s.i64, prefix + "next_sample", 1)[0]);
   }
   void on_resume(const StateView& view, const std::string&) override { write(view); }
 
@@ -64,13 +68,15 @@ class ProbeObserver final : public Observer {
     if (field == "u") return (*g.u)(i, j);
     if (field == "v") return (*g.v)(i, j);
     if (field == "T") return (*g.T)(i, j);
-    if (field == "alpha_p") return v.alpha_p != nullptr ? (*v.alpha_p)(i, j) : 1.0 - (*g.alpha_g)(i, j);
+    if (field == "alpha_p")
+      return v.alpha_p != nullptr ? (*v.alpha_p)(i, j) : 1.0 - (*g.alpha_g)(i, j);
     if (!v.gas) throw std::invalid_argument("ProbeObserver: the Mach number needs the gas solver");
     return std::hypot((*g.u)(i, j), (*g.v)(i, j)) / v.gas->sound_speed(i, j);  // "mach"
   }
   void sample(const StateView& view) {
     if (sampled_ && view.time == last_time_) return;
-    if (!view.grid || !view.primitives.p) throw std::invalid_argument("ProbeObserver: the state view has no gas fields");
+    if (!view.grid || !view.primitives.p)
+      throw std::invalid_argument("ProbeObserver: the state view has no gas fields");
     row_.assign(1, view.time);
     for (const ProbeConfig& p : options_.probes) {
       const int i = view.grid->x().locate(p.x), j = view.grid->y().locate(p.y);
@@ -79,7 +85,7 @@ class ProbeObserver final : public Observer {
     table_.append_row(row_);
     sampled_ = true;
     last_time_ = view.time;
-    if (options_.interval > 0.0) next_sample_ = first_multiple_after(view.time, options_.interval);
+    samples_.done({view.time, view.step, 0.0});
   }
   void write(const StateView& view) {
     if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
@@ -92,7 +98,7 @@ class ProbeObserver final : public Observer {
   std::vector<double> row_;
   bool sampled_ = false;
   double last_time_ = 0.0;
-  long long next_sample_ = 1;
+  Cadence samples_;  ///< probe.interval, or every step
 };
 
 }  // namespace

@@ -30,7 +30,8 @@ class VtkGasWriter final : public Observer {
     if (files_->last_time_is(view.time)) return;  // on_finish right after the output of that time
     const auto sound_speed = [&](int i, int j) { return sound_speed_(view, i, j); };
     if (view.piece == nullptr) {
-      gather_gas_cells(*view.grid, view.primitives, view.alpha_p, sound_speed, cells_);
+      gather_gas_cells(*view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
+                       sound_speed, cells_);
       write_gas_vtr(cells_, files_->next_path(view.time), vtk_file_info_of(view));
       files_->commit(view.time);
       return;
@@ -39,8 +40,8 @@ class VtkGasWriter final : public Observer {
     write_in_pieces(
         *files_, piece, view.time, "vtr",
         [&](const std::string& path) {
-          gather_gas_cells(*view.grid, view.primitives, view.alpha_p, sound_speed, cells_,
-                           piece.neighbour_left() ? 1 : 0, piece.neighbour_right() ? 1 : 0);
+          gather_gas_cells(*view.grid, view.primitives, view.alpha_p,
+                           vorticity_of(view, vorticity_), sound_speed, cells_);
           write_gas_vtr(cells_, path, vtk_file_info_of(view),
                         piece.column_bounds[static_cast<std::size_t>(piece.rank)]);
         },
@@ -78,6 +79,7 @@ class VtkGasWriter final : public Observer {
   std::unique_ptr<VtkSeriesFiles> files_;
   VtkSeriesFiles::State restored_;
   GasCellArrays cells_;  // reused: no reallocation after the first output
+  Field2D vorticity_;    // for a view without the run's derived fields (made by hand)
 };
 
 }  // namespace

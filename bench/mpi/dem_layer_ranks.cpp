@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "bench/dem_reference_layer.hpp"
-#include "solver/parallel/parcel_slabs.hpp"
 #include "solver/parallel/communicator.hpp"
+#include "solver/parallel/parcel_slabs.hpp"
 
 using namespace dustlift;
 
@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
     for (int q = 0; q < ranks; ++q) {
       const std::vector<double>& r = rows[static_cast<std::size_t>(q)];
       std::printf(
-          "rank %d: owned %.0f ghosts %.0f | per step: %.1f doubles (%.0f B), %.2f messages | parcels "
+          "rank %d: owned %.0f ghosts %.0f | per step: %.1f doubles (%.0f B), %.2f messages | "
+          "parcels "
           "handed over %.0f | exchange %.3f s\n",
           q, r[0], r[1], r[2], 8.0 * r[2], r[3], r[4] * steps, r[5]);
     }

@@ -1,11 +1,11 @@
 #include "solver/app/run_scene.hpp"
 
+#include <fmt/core.h>
 #include <omp.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fmt/core.h>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -19,6 +19,7 @@
 #include "solver/core/wait_policy.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/table_reader.hpp"
+#include "solver/sim/checkpoint_keeper.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/time_targets.hpp"
 
@@ -50,16 +51,18 @@ class Log {
 bool ended_off_the_output_grid(const Snapshot& s, double interval) {
   const auto end = s.f64.find("run/end_time");
   const auto t = s.f64.find("run/time");
-  if (end == s.f64.end() || t == s.f64.end() || end->second.size() != 1 || t->second.size() != 1) return false;
+  if (end == s.f64.end() || t == s.f64.end() || end->second.size() != 1 || t->second.size() != 1)
+    return false;
   const double time = t->second[0];
   if (time != end->second[0]) return false;
-  return !(interval > 0.0) || multiple_time(first_multiple_after(time, interval) - 1, interval) != time;
+  return !(interval > 0.0) ||
+         multiple_time(first_multiple_after(time, interval) - 1, interval) != time;
 }
 
 /// The resolved scene with where it came from: it runs again as it is (`dustlift run`).
 std::string resolved_scene_file(const Scene& scene, const RunOptions& options) {
-  return fmt::format("# Written by dustlift {}\n# Command: {}\n{}", code_version(), options.command_line,
-                     scene.resolved_toml);
+  return fmt::format("# Written by dustlift {}\n# Command: {}\n{}", code_version(),
+                     options.command_line, scene.resolved_toml);
 }
 
 }  // namespace
@@ -73,9 +76,13 @@ std::string format_duration(double s) {
 }
 
 RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOptions& options) {
-  const bool continuing = options.restart != nullptr && same_folder(out_dir, options.restart_folder);
-  const FolderUse use = continuing ? FolderUse::Continue : options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh;
-  const Communicator* comm = options.comm != nullptr && options.comm->size() > 1 ? options.comm : nullptr;
+  const bool continuing =
+      options.restart != nullptr && same_folder(out_dir, options.restart_folder);
+  const FolderUse use = continuing          ? FolderUse::Continue
+                        : options.overwrite ? FolderUse::Overwrite
+                                            : FolderUse::Fresh;
+  const Communicator* comm =
+      options.comm != nullptr && options.comm->size() > 1 ? options.comm : nullptr;
   const bool root = comm == nullptr || comm->is_root();
   if (comm == nullptr) {
     check_output_folder(out_dir, use);
@@ -100,6 +107,12 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   // Rank 0 holds every output; the others only the writers of their pieces (the same ones,
   // in the same order, since their writes are collective).
   for (auto& o : make_output_observers(scene, out_dir, !root)) sim.add_observer(std::move(o));
+  // Every rank takes part in the snapshot (rank 0 gathers the whole state); rank 0 writes it.
+  const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
+  CheckpointKeeper::Sink write_file;
+  if (root)
+    write_file = [checkpoint_path](const Snapshot& s) { write_checkpoint(checkpoint_path, s); };
+  sim.add_observer(std::make_unique<CheckpointKeeper>(scene.output, std::move(write_file)));
   if (options.restart != nullptr) {
     try {
       sim.restore(*options.restart, options.restart_folder);
@@ -115,36 +128,37 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   Log log(root ? fs::path(out_dir) / "run.log" : fs::path(), root && options.echo_log, continuing);
   log.line(fmt::format("dustlift {}", code_version()));
   log.line(fmt::format("command: {}", options.command_line));
-  log.line(fmt::format("dustlift run {} -> {} ({} threads{})", options.scene_label, out_dir, omp_get_max_threads(),
-                       comm != nullptr ? fmt::format(" per rank, {} MPI ranks", comm->size()) : std::string()));
+  log.line(fmt::format(
+      "dustlift run {} -> {} ({} threads{})", options.scene_label, out_dir, omp_get_max_threads(),
+      comm != nullptr ? fmt::format(" per rank, {} MPI ranks", comm->size()) : std::string()));
   log.line("  " + wait_policy_description());
   if (options.restart != nullptr) {
     log.line(fmt::format("  restarted at t = {:.6e} s, step {}{}", sim.time(), sim.step(),
                          continuing ? ", continuing the series in this folder"
                                     : ", continuing the series of " + options.restart_folder));
   }
-  if (options.restart != nullptr && ended_off_the_output_grid(*options.restart, scene.output.interval)) {
-    log.line("  note: the checkpoint is the end of a run whose end time was not an output time; its last step "
-             "was shortened to end there, so this continuation differs in the last digits from a single run to "
-             "the new end (end times that are multiples of output.interval continue bit for bit)");
+  if (options.restart != nullptr &&
+      ended_off_the_output_grid(*options.restart, scene.output.interval)) {
+    log.line(
+        "  note: the checkpoint is the end of a run whose end time was not an output time; its "
+        "last step "
+        "was shortened to end there, so this continuation differs in the last digits from a single "
+        "run to "
+        "the new end (end times that are multiples of output.interval continue bit for bit)");
   }
-  const std::string checkpoint_path = (fs::path(out_dir) / "checkpoint.h5").string();
-  // Every rank takes part in the snapshot (rank 0 gathers the whole grid); rank 0 writes it.
-  sim.set_checkpoint_writer([&](const Simulation& s) {
-    const Snapshot snap = s.snapshot();
-    if (root) write_checkpoint(checkpoint_path, snap);
-  });
+
   for (const auto& e : sim.enabled_effects()) log.line("  " + e);
   if (sim.parcels() != nullptr) {
     log.line("  " + describe_layer(scene.particles));
     if (layer_settles(scene.particles.layer)) log.line("  " + sim.bed_description());
   }
   sim.set_log([&](const std::string& s) { log.line(s); });
-  if (root) sim.set_progress_callback([&](const Progress& p) {
-    log.line(fmt::format("t = {:.4e} s ({:5.1f}%)  step {}  dt = {:.3e} s  wall {}  ETA {}", p.time,
-                         100.0 * p.time / p.end_time, p.step, p.dt, format_duration(p.wall_seconds),
-                         format_duration(p.eta_seconds)));
-  });
+  if (root)
+    sim.set_progress_callback([&](const Progress& p) {
+      log.line(fmt::format("t = {:.4e} s ({:5.1f}%)  step {}  dt = {:.3e} s  wall {}  ETA {}",
+                           p.time, 100.0 * p.time / p.end_time, p.step, p.dt,
+                           format_duration(p.wall_seconds), format_duration(p.eta_seconds)));
+    });
   RunOutcome outcome;
   const auto t0 = std::chrono::steady_clock::now();
   RunEnd how = RunEnd::Completed;
@@ -163,18 +177,20 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     outcome.failure = e.what();
     log.line(std::string("dustlift: numerical failure: ") + e.what());
   }
-  outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  outcome.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   outcome.time = sim.time();
   outcome.steps = sim.step();
   if (outcome.exit_code == kExitSuccess) outcome.checkpoint = checkpoint_path;
   if (how == RunEnd::Interrupted) {
     outcome.exit_code = kExitInterrupted;
-    log.line(fmt::format("dustlift: interrupted by {} at t = {:.6e} s after {} steps; checkpoint written to {}",
-                         outcome.signal, sim.time(), sim.step(), checkpoint_path));
+    log.line(fmt::format(
+        "dustlift: interrupted by {} at t = {:.6e} s after {} steps; checkpoint written to {}",
+        outcome.signal, sim.time(), sim.step(), checkpoint_path));
     log.line(fmt::format("continue with: dustlift run --restart {}", checkpoint_path));
   } else if (outcome.exit_code == kExitSuccess) {
-    log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(), sim.step(),
-                         outcome.wall_seconds));
+    log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(),
+                         sim.step(), outcome.wall_seconds));
     log.line(sim.work_summary());  // collective: every rank's cell updates
   }
   return outcome;

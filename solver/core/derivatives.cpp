@@ -1,7 +1,6 @@
 #include "solver/core/derivatives.hpp"
 
 #include <algorithm>
-
 #include <cstddef>
 #include <stdexcept>
 #include <vector>
@@ -16,60 +15,19 @@ ThreePointWeights derivative_weights(double c0, double c1, double c2, double at)
   return {w0, w1, w2};
 }
 
-namespace {
-
-/// Derivative along one axis of a strided line of n values at index k.
-double line_derivative(std::span<const double> c, const double* f, std::size_t stride,
-                       std::size_t k) {
-  const std::size_t n = c.size();
-  if (n < 2) return 0.0;
-  if (n == 2) return (f[stride] - f[0]) / (c[1] - c[0]);
-  std::size_t first = k == 0 ? 0 : (k == n - 1 ? n - 3 : k - 1);  // one-sided at the ends
-  const ThreePointWeights w = derivative_weights(c[first], c[first + 1], c[first + 2], c[k]);
-  // The weights sum to zero: written as differences, a uniform field gives exactly 0.
-  const double f1 = f[(first + 1) * stride];
-  return w.w0 * (f[first * stride] - f1) + w.w2 * (f[(first + 2) * stride] - f1);
-}
-
-}  // namespace
-
-void vorticity_z(std::span<const double> x_centers, std::span<const double> y_centers,
-                 std::span<const double> u, std::span<const double> v, std::span<double> out) {
-  const std::size_t nx = x_centers.size(), ny = y_centers.size();
-  if (u.size() != nx * ny || v.size() != nx * ny || out.size() != nx * ny)
-    throw std::invalid_argument("vorticity_z: u, v and out must hold nx*ny values");
-  for (std::size_t j = 0; j < ny; ++j) {
-    for (std::size_t i = 0; i < nx; ++i) {
-      const double dvdx = line_derivative(x_centers, v.data() + j * nx, 1, i);
-      const double dudy = line_derivative(y_centers, u.data() + i, nx, j);
-      out[i + nx * j] = dvdx - dudy;
-    }
-  }
-}
-
 std::vector<double> interior_centers(const Axis& axis) {
   std::vector<double> c(static_cast<std::size_t>(axis.cells()));
   for (int i = 0; i < axis.cells(); ++i) c[static_cast<std::size_t>(i)] = axis.center(i);
   return c;
 }
 
-namespace {
-std::vector<double> interior_values(const Grid2D& grid, const Field2D& f) {
+std::vector<double> vorticity_z(const Grid2D& grid, const Field2D& u, const Field2D& v) {
+  Field2D w(grid);
+  vorticity_z_rows(grid, u, v, 0, grid.ny(), w);
   std::vector<double> out(grid.interior_cells());
   for (int j = 0; j < grid.ny(); ++j)
     for (int i = 0; i < grid.nx(); ++i)
-      out[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] = f(i, j);
-  return out;
-}
-}  // namespace
-
-std::vector<double> vorticity_z(const Grid2D& grid, const Field2D& u, const Field2D& v) {
-  const auto xc = interior_centers(grid.x());
-  const auto yc = interior_centers(grid.y());
-  const auto ui = interior_values(grid, u);
-  const auto vi = interior_values(grid, v);
-  std::vector<double> out(grid.interior_cells());
-  vorticity_z(xc, yc, ui, vi, out);
+      out[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] = w(i, j);
   return out;
 }
 
@@ -90,7 +48,8 @@ double axis_derivative(const Axis& a, int k, At at) {
 
 }  // namespace
 
-void vorticity_z_segment(const Grid2D& g, const Field2D& u, const Field2D& v, int j, int i0, int i1, Field2D& out) {
+void vorticity_z_segment(const Grid2D& g, const Field2D& u, const Field2D& v, int j, int i0, int i1,
+                         Field2D& out) {
   for (int i = i0; i < i1; ++i) {
     const double dvdx = axis_derivative(g.x(), i, [&](int m) { return v(m, j); });
     const double dudy = axis_derivative(g.y(), j, [&](int m) { return u(i, m); });
@@ -98,21 +57,24 @@ void vorticity_z_segment(const Grid2D& g, const Field2D& u, const Field2D& v, in
   }
 }
 
-void gradient_segment(const Grid2D& g, const Field2D& f, int j, int i0, int i1, Field2D& dfdx, Field2D& dfdy) {
+void gradient_segment(const Grid2D& g, const Field2D& f, int j, int i0, int i1, Field2D& dfdx,
+                      Field2D& dfdy) {
   for (int i = i0; i < i1; ++i) {
     dfdx(i, j) = axis_derivative(g.x(), i, [&](int m) { return f(m, j); });
     dfdy(i, j) = axis_derivative(g.y(), j, [&](int m) { return f(i, m); });
   }
 }
 
-void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1, Field2D& out) {
+void vorticity_z_rows(const Grid2D& g, const Field2D& u, const Field2D& v, int j0, int j1,
+                      Field2D& out) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
 #pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)
   for (int j = j0; j < j1; ++j) vorticity_z_segment(g, u, v, j, 0, g.nx(), out);
 }
 
-void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx, Field2D& dfdy) {
+void gradient_rows(const Grid2D& g, const Field2D& f, int j0, int j1, Field2D& dfdx,
+                   Field2D& dfdy) {
   j0 = std::max(j0, 0);
   j1 = std::min(j1, g.ny());
 #pragma omp parallel for schedule(static) if ((j1 - j0) * g.nx() >= 32768)

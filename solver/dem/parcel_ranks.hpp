@@ -28,10 +28,12 @@ class ParcelRanks {
   /// before (on every rank alike).
   virtual bool redistribute(ParcelSystem& parcels) = 0;
   /// After the rebuild's cell sort (`old_index[new] = old`; `permuted`: the rows moved).
-  virtual void after_sort(ParcelSystem& parcels, const std::vector<std::int32_t>& old_index, bool permuted) = 0;
+  virtual void after_sort(ParcelSystem& parcels, const std::vector<std::int32_t>& old_index,
+                          bool permuted) = 0;
   /// The owners' values of these per-parcel arrays to their copies (one message per
   /// neighbour).
-  virtual void refresh_copies(ParcelSystem& parcels, std::span<std::vector<double>* const> columns) = 0;
+  virtual void refresh_copies(ParcelSystem& parcels,
+                              std::span<std::vector<double>* const> columns) = 0;
 };
 
 }  // namespace dustlift

@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-
 namespace dustlift {
 
 ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {

@@ -160,7 +160,9 @@ class ParcelSystem : public ParcelTable {
     return ranks_ != nullptr ? ranks_->first_nonempty(local) : local;
   }
   /// Collective when split: the largest value over the ranks (the value otherwise).
-  double max_over_ranks(double value) const { return ranks_ != nullptr ? ranks_->max(value) : value; }
+  double max_over_ranks(double value) const {
+    return ranks_ != nullptr ? ranks_->max(value) : value;
+  }
   /// Element by element, in place (one message for all of them).
   void max_over_ranks(std::span<double> values) const {
     if (ranks_ == nullptr) return;

@@ -50,7 +50,7 @@ struct ParcelColumnSpec {
   bool checkpointed = false;  ///< part of the state a restart needs
   bool written = false;       ///< written to the .vtp (and published in situ)
   ColumnFlow flow = ColumnFlow::Carried;
-  int per_parcel = 1;           ///< values per parcel (the wall history: one per wall)
+  int per_parcel = 1;                ///< values per parcel (the wall history: one per wall)
   std::string checkpoint_name = {};  ///< dataset of a checkpointed built-in column
   /// A written column's point array and component (two columns make one 2-D vector);
   /// "position" is the points themselves.

@@ -40,17 +40,26 @@ class SecondsSince {
 
 ParcelSlabs::ParcelSlabs(const Communicator& comm) : comm_(&comm) {}
 
-double ParcelSlabs::min(double value) const { return comm_->min(value); }
-bool ParcelSlabs::any(bool value) const { return comm_->any(value); }
-void ParcelSlabs::min_each(std::span<double> values) const { comm_->min_each(values); }
-std::string ParcelSlabs::first_nonempty(const std::string& text) const { return comm_->first_nonempty(text); }
+double ParcelSlabs::min(double value) const {
+  return comm_->min(value);
+}
+bool ParcelSlabs::any(bool value) const {
+  return comm_->any(value);
+}
+void ParcelSlabs::min_each(std::span<double> values) const {
+  comm_->min_each(values);
+}
+std::string ParcelSlabs::first_nonempty(const std::string& text) const {
+  return comm_->first_nonempty(text);
+}
 
 void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
   if (ps.cfg_.domain.periodic_x) {
     throw std::invalid_argument(
         "ParcelSystem: a periodic channel's parcels cannot be split over ranks");
   }
-  if (ps.ranks_ != nullptr) throw std::logic_error("ParcelSlabs::split: the parcels are split already");
+  if (ps.ranks_ != nullptr)
+    throw std::logic_error("ParcelSlabs::split: the parcels are split already");
   ps.ranks_ = this;
   set_cuts(std::move(cuts));
   const std::size_t n = ps.size();
@@ -96,7 +105,8 @@ int ParcelSlabs::copy_reach_columns(const ParcelSystem& ps) const {
   }
   const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
   const double s_max = -comm_->min(-s);
-  return static_cast<int>(std::ceil((2.0 * ps.radius_max_ + 2.0 * s_max + copy_margin_) / ps.cell_dx_)) +
+  return static_cast<int>(
+             std::ceil((2.0 * ps.radius_max_ + 2.0 * s_max + copy_margin_) / ps.cell_dx_)) +
          1;
 }
 
@@ -341,7 +351,8 @@ bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   return had_list;
 }
 
-void ParcelSlabs::after_sort(ParcelSystem& ps, const std::vector<std::int32_t>& old_index, bool permuted) {
+void ParcelSlabs::after_sort(ParcelSystem& ps, const std::vector<std::int32_t>& old_index,
+                             bool permuted) {
   if (!permuted) return;
   const SecondsSince timer(counters_.seconds);
   const std::size_t n = ps.size();
@@ -383,7 +394,8 @@ void ParcelSlabs::after_sort(ParcelSystem& ps, const std::vector<std::int32_t>& 
   }
 }
 
-void ParcelSlabs::refresh_copies(ParcelSystem& /*parcels*/, std::span<std::vector<double>* const> columns) {
+void ParcelSlabs::refresh_copies(ParcelSystem& /*parcels*/,
+                                 std::span<std::vector<double>* const> columns) {
   const SecondsSince timer(counters_.seconds);
   const int ranks = comm_->size();
   const std::size_t width = columns.size();

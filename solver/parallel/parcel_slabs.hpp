@@ -38,7 +38,8 @@ class ParcelSlabs final : public ParcelRanks {
   /// parcel or a wall with a tangential elongation to carry), copies sent at rebuilds,
   /// doubles and messages sent, and the seconds spent in them.
   struct Counters {
-    long long migrated = 0, migrated_with_history = 0, copies_sent = 0, doubles_sent = 0, messages = 0;
+    long long migrated = 0, migrated_with_history = 0, copies_sent = 0, doubles_sent = 0,
+              messages = 0;
     double seconds = 0.0;
   };
   const Counters& counters() const { return counters_; }
@@ -49,8 +50,10 @@ class ParcelSlabs final : public ParcelRanks {
   void min_each(std::span<double> values) const override;
   std::string first_nonempty(const std::string& text) const override;
   bool redistribute(ParcelSystem& parcels) override;
-  void after_sort(ParcelSystem& parcels, const std::vector<std::int32_t>& old_index, bool permuted) override;
-  void refresh_copies(ParcelSystem& parcels, std::span<std::vector<double>* const> columns) override;
+  void after_sort(ParcelSystem& parcels, const std::vector<std::int32_t>& old_index,
+                  bool permuted) override;
+  void refresh_copies(ParcelSystem& parcels,
+                      std::span<std::vector<double>* const> columns) override;
 
  private:
   /// split's split of a table every rank holds alike.

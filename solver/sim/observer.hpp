@@ -11,6 +11,7 @@
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/sim/schedule.hpp"
 #include "solver/sim/snapshot.hpp"
 
 namespace dustlift {
@@ -18,6 +19,7 @@ namespace dustlift {
 class ParcelSystem;         // solver/dem/parcel_system.hpp
 class GasParticleCoupling;  // solver/coupling/gas_particle_coupling.hpp
 class Communicator;         // solver/parallel/communicator.hpp
+class DerivedFields;        // solver/sim/derived_fields.hpp
 
 /// How the run was made, for the files that record it (VTK field data, series.h5 attributes).
 struct Provenance {
@@ -49,20 +51,23 @@ struct StateView {
   const Grid2D* grid = nullptr;
   const GasSolver* gas = nullptr;
   GasPrimitives primitives{};
-  const ParcelSystem* parcels = nullptr;  ///< null in a gas-only scene
+  const ParcelSystem* parcels = nullptr;          ///< null in a gas-only scene
   const GasParticleCoupling* coupling = nullptr;  ///< null in a gas-only scene
   /// Particle volume fraction as deposited (eq. 12, before the porosity cap); null in a
   /// gas-only scene. Use it rather than 1 - alpha_g, which one-way coupling leaves at 0.
   const Field2D* alpha_p = nullptr;
-  double time = 0.0;                      ///< s
+  double time = 0.0;  ///< s
   long long step = 0;
-  std::string output_dir;                 ///< the run's output folder
-  const Provenance* provenance = nullptr; ///< null: not recorded
+  std::string output_dir;                  ///< the run's output folder
+  const Provenance* provenance = nullptr;  ///< null: not recorded
   /// The run's log (run.log and the terminal), one line per call; null: no log (tests).
   const std::function<void(const std::string&)>* log = nullptr;
   /// Set for an observer that writes pieces, in a decomposed run: the rank's slab (RunPiece).
   /// Null: the view shows the whole run (one rank, or the state gathered on rank 0).
   const RunPiece* piece = nullptr;
+  /// Fields derived from what the view shows (the vorticity), made at most once per step
+  /// whoever asks first. Views made by hand (tests) may leave it null.
+  const DerivedFields* derived = nullptr;
 };
 
 class Observer {
@@ -82,11 +87,11 @@ class Observer {
   /// rank 0 only that (filters that sample every step would otherwise gather the whole grid
   /// and parcel table every step). Default: everything.
   enum StepRead : unsigned {
-    kReadsPressure = 1u,      ///< the gas pressure
-    kReadsAlphaP = 2u,        ///< the deposited alpha_p
-    kReadsGas = 4u,           ///< every gas field
-    kReadsBandParcels = 8u,   ///< the parcels that started in the scene's output bands
-    kReadsParcels = 16u,      ///< every parcel
+    kReadsPressure = 1u,     ///< the gas pressure
+    kReadsAlphaP = 2u,       ///< the deposited alpha_p
+    kReadsGas = 4u,          ///< every gas field
+    kReadsBandParcels = 8u,  ///< the parcels that started in the scene's output bands
+    kReadsParcels = 16u,     ///< every parcel
     kReadsEverything = 31u
   };
   virtual unsigned step_reads() const { return kReadsEverything; }
@@ -117,6 +122,18 @@ class Observer {
   /// are brought back to the checkpoint's state. `previous_output_dir` is the folder the
   /// restored run wrote to (the checkpoint's folder), which may differ from view.output_dir.
   virtual void on_resume(const StateView&, const std::string& /*previous_output_dir*/) {}
+
+  // ---- Keeping the run's checkpoints ----
+  /// Whether this observer keeps checkpoints. It is then made on every rank (writes_pieces)
+  /// and asked after every step but the last whether one is due (on any rank: one rank's
+  /// wall clock may say so); when one is, every rank helps build the snapshot (whole on
+  /// rank 0) and hands it to on_checkpoint. One is also made after the last step of a run,
+  /// an interrupted one included, unless that step's is made already.
+  virtual bool keeps_checkpoints() const { return false; }
+  /// Called after every step but the last (now.wall: seconds since the run segment began);
+  /// a cadence in simulated time moves on here whether or not a checkpoint is made.
+  virtual bool checkpoint_due(const RunClock& /*now*/) { return false; }
+  virtual void on_checkpoint(const Snapshot&, const RunClock& /*now*/) {}
 };
 
 }  // namespace dustlift

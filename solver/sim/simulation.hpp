@@ -1,6 +1,9 @@
 #pragma once
 // Drives a run: builds the models the scene enables, advances time (eq. 17 steps,
 // landing exactly on output and end times) and notifies observers at output times.
+// simulation.cpp sets up and steps, run_loop.cpp runs the schedule, run_report.cpp writes
+// what the run did, snapshot.cpp saves and restores it; a run on several MPI ranks adds its
+// SlabDriver (slab_driver.hpp).
 #include <functional>
 #include <memory>
 #include <string>
@@ -10,10 +13,11 @@
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/parallel/communicator.hpp"
-#include "solver/parallel/parcel_slabs.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/sim/derived_fields.hpp"
 #include "solver/sim/observer.hpp"
+#include "solver/sim/schedule.hpp"
 #include "solver/sim/snapshot.hpp"
 
 namespace dustlift {
@@ -32,15 +36,15 @@ enum class RunEnd {
   Interrupted,  ///< the stop request said so (SIGINT/SIGTERM): checkpointed, no final frame
 };
 
-class SlabHalo;
+class SlabDriver;
 
 class Simulation {
  public:
   /// With a communicator of several ranks the grid is cut into x-slabs, one per rank
-  /// (issue 12; docs/parallel.md): every rank must then make the same calls (advance, run,
-  /// snapshot, restore, work_summary are collective). Observers belong on rank 0 and see the
-  /// whole state gathered there, except those that write pieces (Observer::writes_pieces),
-  /// which every rank adds in the same order and which see their rank's slab.
+  /// (docs/parallel.md): every rank must then make the same calls (advance, run, snapshot,
+  /// restore, work_summary are collective). Observers belong on rank 0 and see the whole
+  /// state gathered there, except those that write pieces (Observer::writes_pieces), which
+  /// every rank adds in the same order and which see their rank's slab.
   explicit Simulation(const Scene& scene, const Communicator* comm = nullptr);
   ~Simulation();
 
@@ -58,25 +62,18 @@ class Simulation {
   /// end time is shortened to end exactly on it (the time is set to the target, not summed
   /// up to it), so a run restarted from any checkpoint, or extended from its final one,
   /// takes the same steps as the run that was never interrupted (an extension: when its
-  /// earlier end time was an output time).
-  ///
-  /// With a checkpoint writer set, it is called at the end of the first step at or after
-  /// each multiple of output.checkpoint_interval, after any step that ends at least
-  /// output.checkpoint_wall_interval wall seconds after the previous checkpoint, once after
-  /// the last step, and after the step during which a stop was requested (never after a
-  /// failure). Steps are not shortened for checkpoints: the result does not depend on when
-  /// they are written.
+  /// earlier end time was an output time). Observers that keep checkpoints
+  /// (Observer::keeps_checkpoints, e.g. CheckpointKeeper) are asked after every step and
+  /// get one after the last step and after the step during which a stop was requested.
   RunEnd run(const std::string& output_dir);
 
   /// Polled after every step (and its outputs); true stops the run as RunEnd::Interrupted.
   void set_stop_request(std::function<bool()> stop_requested);
 
-  /// Called with the simulation whenever run() checkpoints (insitu/checkpoint.hpp writes it).
-  void set_checkpoint_writer(std::function<void(const Simulation&)> writer);
-
   /// Everything the next step reads (gas, parcels with contact history, DEM internals,
   /// coupling carry-over, time, step and output counters, scene text) and the observers'
   /// state (insitu/<key>/: series so far, filter sums, file numbering). See snapshot.hpp.
+  /// Collective in a decomposed run (rank 0's holds the state).
   Snapshot snapshot() const;
   /// Restores a snapshot taken from a simulation of the same scene (the caller builds this
   /// one from the scene text the snapshot carries), with the same observers added first.
@@ -85,7 +82,7 @@ class Simulation {
   /// instead of starting them; `previous_output_dir` is the folder they were written to.
   void restore(const Snapshot& s, const std::string& previous_output_dir = {});
   /// Index of the next output time (next_output * output.interval).
-  long long next_output() const { return next_output_; }
+  long long next_output() const { return outputs_.next_index(); }
 
   /// Advances one step of at most `dt_max` (used by run() and by tests).
   double advance(double dt_max);
@@ -103,20 +100,16 @@ class Simulation {
   /// This rank's grid: the whole grid, or its x-slab in a decomposed run.
   const Grid2D& grid() const { return grid_; }
   const Grid2D& whole_grid() const { return whole_grid_; }
-  bool decomposed() const { return decomposed_; }
+  bool decomposed() const { return slabs_ != nullptr; }
   /// This rank's slab (one slab of the whole grid when not decomposed).
-  const SlabLayout& slab() const { return layout_; }
-  /// Collective in a decomposed run: rank 0's copy of the whole grid's gas (null elsewhere,
-  /// and when not decomposed) takes every rank's slab; all fields, or those observers read.
-  /// What `reads` says (Observer::StepRead bits) of the gas, alpha_p and the parcels on
-  /// rank 0 of a decomposed run; everything, the parcels with their history, when
-  /// with_sources (a checkpoint).
-  void gather_gas(bool with_sources, unsigned reads = Observer::kReadsEverything) const;
-  const GasSolver* whole_gas() const { return whole_gas_.get(); }
-  /// Null in a gas-only scene.
+  const SlabLayout& slab() const;
+  /// Rank 0 of a decomposed run: the gathered copy of the whole gas (null elsewhere, and
+  /// when not decomposed).
+  const GasSolver* whole_gas() const;
   /// The settled bed as made (describe_bed of the whole layer, before any split over ranks);
   /// empty unless the layer settles.
   const std::string& bed_description() const { return bed_description_; }
+  /// Null in a gas-only scene.
   ParcelSystem* parcels() { return parcels_.get(); }
   const ParcelSystem* parcels() const { return parcels_.get(); }
   const GasParticleCoupling* coupling() const { return coupling_.get(); }
@@ -129,68 +122,48 @@ class Simulation {
     double gas = 0.0, observers = 0.0, checkpoints = 0.0;
     double balance = 0.0;  ///< moving slab cuts (a decomposed run)
   };
-  /// Collective in a decomposed run: moves the slab cuts to even out the work of the last
-  /// step (cells each column updated, plus a share for the scans of resting cells) when
-  /// that lowers the largest slab's work by more than 5 %. The state moves exactly: results
-  /// do not change. Returns whether the cuts moved. advance() calls it every
-  /// run.rebalance_steps steps.
+  /// Collective in a decomposed run: moves the slab cuts to follow the work
+  /// (SlabDriver::rebalance). advance() calls it every run.rebalance_steps steps.
   bool rebalance();
-  long long rebalances() const { return rebalances_; }
+  long long rebalances() const;
   const Timings& timings() const { return timings_; }
 
   /// The physical effects this scene switches on, one short phrase each (for `dustlift info`).
   std::vector<std::string> enabled_effects() const;
 
  private:
+  friend class SlabDriver;  // replaces the slab's grid and gas when the cuts move
+  bool any_rank(bool value) const;
+  /// Builds the snapshot (collectively) and hands it to the checkpoint keepers.
+  void make_checkpoint(const RunClock& now);
+  /// The view an observer's calls get: its piece on several ranks when it writes pieces.
+  StateView view_for(const Observer& o, const StateView& whole, const StateView& piece) const {
+    return decomposed() && o.writes_pieces() ? piece : whole;
+  }
+
   Scene scene_;
   Grid2D whole_grid_;
   Grid2D grid_;
-  const Communicator* comm_ = nullptr;
-  bool decomposed_ = false;
-  SlabLayout layout_;
-  std::unique_ptr<SlabHalo> halo_;
   GasConfig gas_config_;
-  long long rebalances_ = 0;
-  long long retired_cell_updates_ = 0;      ///< by the slab solvers a rebalance replaced
-  long long retired_halo_doubles_ = 0, retired_halo_messages_ = 0;
-  double retired_halo_seconds_ = 0.0;
-  long long cell_updates() const;           ///< this rank's, over all its slab solvers
-  void build_slab_gas();
-  mutable std::unique_ptr<GasSolver> whole_gas_;  ///< rank 0 of a decomposed run: the gathered gas
-  /// Rank 0 of a decomposed run with particles: the gathered parcels (the one-rank system),
-  /// alpha_p and the coupling's rows (gather_gas gathers them too).
-  mutable std::unique_ptr<ParcelSystem> whole_parcels_;
-  mutable std::unique_ptr<Field2D> whole_alpha_p_;
-  mutable int whole_rows_touched_ = 0;
-  std::size_t total_parcels_ = 0;  ///< parcels in the whole run (every rank's own)
-  std::string bed_description_;
-  /// with_lists: the contact history and the DEM's own state too (a checkpoint); without,
-  /// what the observers read.
-  /// band_only: only the parcels that started in an output band (Observer::step_reads).
-  void gather_parcels(bool with_lists, bool band_only) const;
-  /// x of the slab cuts, where the parcels are split too.
-  std::vector<double> parcel_cuts() const;
+  SlabLayout one_slab_;  ///< slab() of a run on one rank
   std::unique_ptr<GasSolver> gas_;
-  std::unique_ptr<ParcelSlabs> parcel_slabs_;      ///< the parcels' split, on several ranks
+  std::unique_ptr<SlabDriver> slabs_;              ///< only on several ranks
   std::unique_ptr<ParcelSystem> parcels_;          ///< only when the scene has particles
   std::unique_ptr<GasParticleCoupling> coupling_;  ///< only when the scene has particles
+  std::size_t total_parcels_ = 0;                  ///< parcels in the whole run (every rank's own)
+  std::string bed_description_;
   std::vector<std::unique_ptr<Observer>> observers_;
-  mutable RunPiece piece_;  ///< what piece_view shows (refreshed by each call)
-  /// The view an observer's calls get: its piece on several ranks when it writes pieces.
-  StateView view_for(const Observer& o, const StateView& whole, const StateView& piece) const {
-    return decomposed_ && o.writes_pieces() ? piece : whole;
-  }
+  /// Derived fields of what view() and piece_view() show, made at most once per step.
+  mutable DerivedFields derived_whole_, derived_piece_;
   std::function<void(const Progress&)> progress_;
   std::function<void(const std::string&)> log_;
-  std::function<void(const Simulation&)> checkpoint_;
   std::function<bool()> stop_requested_;
   Provenance provenance_;
-  bool restored_ = false;            ///< run() resumes the observers instead of starting them
-  std::string resumed_from_;         ///< folder the restored run wrote to
-  bool any_rank(bool value) const { return decomposed_ ? comm_->any(value) : value; }
+  bool restored_ = false;     ///< run() resumes the observers instead of starting them
+  std::string resumed_from_;  ///< folder the restored run wrote to
   double time_ = 0.0;
   long long step_ = 0;
-  long long next_output_ = 1;
+  Cadence outputs_;  ///< output.interval (its next index is carried in checkpoints)
   Timings timings_;
   // Counters at the start of run(), for work_summary().
   long long first_step_ = 0, first_cell_updates_ = 0, first_dem_steps_ = 0, first_rebuilds_ = 0;

@@ -7,6 +7,7 @@
 
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/sim/simulation.hpp"
+#include "solver/sim/slab_driver.hpp"
 #include "solver/sim/time_targets.hpp"
 
 namespace dustlift {
@@ -60,16 +61,16 @@ Snapshot Simulation::snapshot() const {
   s.f64["run/output_interval"] = {scene_.output.interval};
   s.f64["run/end_time"] = {end_target(scene_.run.end_time, scene_.output.interval)};
   s.i64["run/step"] = {step_};
-  s.i64["run/next_output"] = {next_output_};
+  s.i64["run/next_output"] = {outputs_.next_index()};
   // Gas: every field step() reads, ghosts included (1-D, row-major (ny + 2g) x (nx + 2g)).
   s.i64["gas/shape"] = {whole_grid_.ny() + 2 * whole_grid_.ghosts(),
                         whole_grid_.nx() + 2 * whole_grid_.ghosts()};
   // A decomposed run gathers the whole grid on rank 0 and writes the same checkpoint as one
   // rank would: it restarts on any number of ranks. The other ranks' snapshots stop here.
-  gather_gas(true);
-  if (decomposed_ && !comm_->is_root()) return s;
+  if (slabs_) slabs_->gather(true);
+  if (slabs_ && !slabs_->comm().is_root()) return s;
   GasSolver& gas = const_cast<GasSolver&>(
-      decomposed_ ? *whole_gas_ : *gas_);  // read only; the accessors are non-const
+      slabs_ ? *slabs_->whole_gas() : *gas_);  // read only; the accessors are non-const
   for (int k = 0; k < 4; ++k) {
     s.f64["gas/conserved_" + std::to_string(k)] = gas.conserved(k).raw();
     s.f64["gas/source_" + std::to_string(k)] = gas.source(k).raw();
@@ -83,8 +84,8 @@ Snapshot Simulation::snapshot() const {
   }
   if (!parcels_) return s;
 
-  // A decomposed run writes the gathered parcels (gather_gas above): the one-rank system.
-  const ParcelSystem& p = decomposed_ ? *whole_parcels_ : *parcels_;
+  // A decomposed run writes the gathered parcels (gathered above): the one-rank system.
+  const ParcelSystem& p = slabs_ ? *slabs_->whole_parcels() : *parcels_;
   p.for_each_column([&](const ParcelColumnSpec& c, const auto& v) {
     using E = typename std::remove_reference_t<decltype(v)>::value_type;
     if (c.checkpointed) snapshot_map<E>(s)[checkpoint_name(c)].assign(v.begin(), v.end());
@@ -99,8 +100,9 @@ Snapshot Simulation::snapshot() const {
   s.i64["dem/needs_rebuild"] = {in.needs_rebuild ? 1 : 0};
   s.i64["dem/steps"] = {in.steps};
   s.i64["dem/rebuilds"] = {in.rebuilds};
-  s.f64["coupling/alpha_p"] = decomposed_ ? whole_alpha_p_->raw() : coupling_->alpha_p().raw();
-  s.i64["coupling/rows_touched"] = {decomposed_ ? whole_rows_touched_ : coupling_->rows_touched()};
+  s.f64["coupling/alpha_p"] = slabs_ ? slabs_->whole_alpha_p()->raw() : coupling_->alpha_p().raw();
+  s.i64["coupling/rows_touched"] = {slabs_ ? slabs_->whole_rows_touched()
+                                           : coupling_->rows_touched()};
   s.f64["coupling/rest_reference"] = {coupling_->rest_pressure(), coupling_->rest_temperature()};
   return s;
 }
@@ -152,9 +154,9 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
   if (parcels_) {
     ParcelSystem& p = *parcels_;
     // A decomposed run reads the whole system on every rank and splits it again below.
-    const std::size_t n = decomposed_ ? total_parcels_ : p.size();
+    const std::size_t n = slabs_ ? total_parcels_ : p.size();
     ParcelSystem restored = p;  // validated on the copy, then swapped in
-    if (decomposed_) {
+    if (slabs_) {
       restored.drop_decomposition();
       // Columns the checkpoint does not hold are made anew within each step: sized only.
       for (std::size_t k = 0; k < restored.attached_count(); ++k)
@@ -212,11 +214,11 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
     }
     GasParticleCoupling::CarriedState c;
     c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);
-    if (decomposed_) {
+    if (slabs_) {
       std::vector<double> slab;
-      extract_slab(c.alpha_p, whole_grid_, layout_, slab);
+      extract_slab(c.alpha_p, whole_grid_, slabs_->layout(), slab);
       c.alpha_p.swap(slab);
-      parcel_slabs_->split(restored, parcel_cuts());
+      slabs_->split(restored);
     }
     c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
     if (has_attached) {
@@ -233,8 +235,8 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
   }
   // A slab takes its columns and the ghost columns beyond them (its neighbours' cells).
   const auto assign = [&](Field2D& f, const std::vector<double>& whole) {
-    if (decomposed_) {
-      extract_slab(whole, whole_grid_, layout_, f.raw());
+    if (slabs_) {
+      extract_slab(whole, whole_grid_, slabs_->layout(), f.raw());
     } else {
       f.raw() = whole;
     }
@@ -254,7 +256,9 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
       stored_interval->second[0] != interval) {
     next_output = interval > 0.0 ? first_multiple_after(t, interval) : 1;
   }
-  next_output_ = next_output;
+  outputs_.set_next_index(next_output);
+  derived_whole_.forget();
+  derived_piece_.forget();
   restored_ = true;
   resumed_from_ = previous_output_dir;
 }

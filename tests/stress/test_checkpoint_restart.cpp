@@ -1,8 +1,8 @@
 // Checkpoint/restart: a run continued from a checkpoint ends bitwise identical to the run that
 // was never interrupted (gas conserved fields, parcel state); a process killed while writing
 // leaves the previous checkpoint usable; damaged or foreign files are rejected with exit 2.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,6 +17,7 @@
 
 #include "insitu/checkpoint.hpp"
 #include "solver/core/errors.hpp"
+#include "solver/sim/checkpoint_keeper.hpp"
 #include "solver/sim/simulation.hpp"
 #include "support/run_cli.hpp"
 #include "support/snapshot_compare.hpp"
@@ -93,7 +94,8 @@ vtk = false
 
 void agitate(ParcelSystem& ps) {
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0), b = std::cos(78.233 * static_cast<double>(k));
+    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0),
+                 b = std::cos(78.233 * static_cast<double>(k));
     ps.vx[k] = 2.0 * a;
     ps.vy[k] = 2.0 * b;
     ps.omega[k] = 2000.0 * a * b;
@@ -132,9 +134,10 @@ void check_restart_is_bitwise(const std::string& text, int first, int total, boo
   // The comparison is not vacuous: the state moved after the checkpoint.
   std::size_t moved = differing(a.f64.at("gas/conserved_1"), stored.f64.at("gas/conserved_1"));
   if (with_parcels) moved += differing(a.f64.at("parcels/x"), stored.f64.at("parcels/x"));
-  std::printf("restart after %d of %d steps: %zu gas+parcel values changed after the checkpoint, 0 differ "
-              "between restarted and uninterrupted (%zu arrays compared)\n",
-              first, total, moved, a.f64.size() + a.i64.size() + a.i32.size() + a.i8.size());
+  std::printf(
+      "restart after %d of %d steps: %zu gas+parcel values changed after the checkpoint, 0 differ "
+      "between restarted and uninterrupted (%zu arrays compared)\n",
+      first, total, moved, a.f64.size() + a.i64.size() + a.i32.size() + a.i8.size());
   EXPECT_GT(moved, 100u);
   fs::remove_all(dir);
 }
@@ -153,14 +156,16 @@ TEST(CheckpointRestart, CliRestartMatchesUninterruptedRun) {
   // Through the CLI and run(): output cadence, next output index and the final checkpoint.
   const auto dir = fresh_dir("cli_restart");
   write_file(dir / "box.toml", kBox);
-  const std::string common = " --threads 2 --set run.end_time=4e-5 --set output.interval=1e-5 --set output.vtk=false";
-  auto r = run_cli("run " + (dir / "box.toml").string() + " --out " + (dir / "full").string() + common);
+  const std::string common =
+      " --threads 2 --set run.end_time=4e-5 --set output.interval=1e-5 --set output.vtk=false";
+  auto r =
+      run_cli("run " + (dir / "box.toml").string() + " --out " + (dir / "full").string() + common);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_cli("run " + (dir / "box.toml").string() + " --out " + (dir / "part").string() + common +
               " --set run.max_steps=37");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = run_cli("run --restart " + (dir / "part" / "checkpoint.h5").string() + " --out " + (dir / "rest").string() +
-              " --threads 1 --set run.max_steps=0");
+  r = run_cli("run --restart " + (dir / "part" / "checkpoint.h5").string() + " --out " +
+              (dir / "rest").string() + " --threads 1 --set run.max_steps=0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Snapshot full = read_checkpoint((dir / "full" / "checkpoint.h5").string());
   const Snapshot part = read_checkpoint((dir / "part" / "checkpoint.h5").string());
@@ -173,8 +178,8 @@ TEST(CheckpointRestart, CliRestartMatchesUninterruptedRun) {
   // wrote at step 37 (tests/stress/test_interrupt_restart.cpp compares series).
   expect_bitwise_equal(full, rest, false);
   // The restart may only change when to stop and what to write.
-  r = run_cli("run --restart " + (dir / "part" / "checkpoint.h5").string() + " --out " + (dir / "bad").string() +
-              " --set gas.scheme.cfl=0.3");
+  r = run_cli("run --restart " + (dir / "part" / "checkpoint.h5").string() + " --out " +
+              (dir / "bad").string() + " --set gas.scheme.cfl=0.3");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("gas.scheme.cfl"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "bad"));
@@ -199,9 +204,9 @@ TEST(CheckpointRestart, KilledWhileWritingLeavesPreviousCheckpointUsable) {
       const int devnull = open("/dev/null", O_WRONLY);
       dup2(devnull, 1);
       dup2(devnull, 2);
-      execl(DUSTLIFT_BINARY, DUSTLIFT_BINARY, "run", scene.c_str(), "--out", o.c_str(), "--threads", "1", "--set",
-            "run.end_time=1e-3", "--set", "output.vtk=false", "--set", "output.checkpoint_interval=1e-9",
-            static_cast<char*>(nullptr));
+      execl(DUSTLIFT_BINARY, DUSTLIFT_BINARY, "run", scene.c_str(), "--out", o.c_str(), "--threads",
+            "1", "--set", "run.end_time=1e-3", "--set", "output.vtk=false", "--set",
+            "output.checkpoint_interval=1e-9", static_cast<char*>(nullptr));
       _exit(127);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
@@ -215,8 +220,8 @@ TEST(CheckpointRestart, KilledWhileWritingLeavesPreviousCheckpointUsable) {
     const Snapshot s = read_checkpoint((out / "checkpoint.h5").string());
     char end_time[64];
     std::snprintf(end_time, sizeof end_time, "%.17g", s.f64.at("run/time")[0] + 2e-6);
-    const auto r = run_cli("run --restart " + (out / "checkpoint.h5").string() + " --out " + (dir / "cont").string() +
-                           " --threads 1 --set run.end_time=" + end_time +
+    const auto r = run_cli("run --restart " + (out / "checkpoint.h5").string() + " --out " +
+                           (dir / "cont").string() + " --threads 1 --set run.end_time=" + end_time +
                            " --set output.checkpoint_interval=0");
     ASSERT_EQ(r.exit_code, 0) << "trial " << trial << "\n" << r.output;
     const Snapshot end = read_checkpoint((dir / "cont" / "checkpoint.h5").string());
@@ -224,8 +229,10 @@ TEST(CheckpointRestart, KilledWhileWritingLeavesPreviousCheckpointUsable) {
     EXPECT_GT(end.i64.at("run/step")[0], s.i64.at("run/step")[0]);
     fs::remove_all(dir / "cont");
   }
-  std::printf("kill -9: %d trials, %d left a checkpoint (all restarted), %d were killed with a .tmp present\n",
-              trials, killed_with_checkpoint, killed_during_tmp);
+  std::printf(
+      "kill -9: %d trials, %d left a checkpoint (all restarted), %d were killed with a .tmp "
+      "present\n",
+      trials, killed_with_checkpoint, killed_during_tmp);
   EXPECT_GE(killed_with_checkpoint, trials / 2);
   fs::remove_all(dir);
 }
@@ -267,7 +274,8 @@ TEST(CheckpointRestart, DamagedOrForeignFilesExitWithCode2) {
     r = run_cli("run --restart " + file.string() + " --out " + out.string());
     EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.name << ": " << r.output;
-    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << c.name << ": one line\n" << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << c.name << ": one line\n"
+                                                                     << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.name;
   }
   // Sealed foreign HDF5: passes the checksum, fails on the layout.
@@ -290,13 +298,13 @@ TEST(CheckpointRestart, NumericalFailureLeavesLastGoodCheckpoint) {
   Simulation sim(scene);
   int written = 0;
   long long poisoned_at = -1;
-  sim.set_checkpoint_writer([&](const Simulation& s) {
-    write_checkpoint(path, s.snapshot());
+  sim.add_observer(std::make_unique<CheckpointKeeper>(scene.output, [&](const Snapshot& s) {
+    write_checkpoint(path, s);
     if (++written == 5) {
-      poisoned_at = s.step();
+      poisoned_at = sim.step();
       sim.gas().conserved(0)(40, 5) = -1.0;
     }
-  });
+  }));
   EXPECT_THROW(sim.run(dir.string()), NumericalFailure);
   EXPECT_EQ(written, 5);
   const Snapshot last = read_checkpoint(path);

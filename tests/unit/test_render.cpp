@@ -59,7 +59,16 @@ void write_synthetic_run(const fs::path& dir) {
         g.mach[k] = g.velocity_x[k] / 340.0;
         g.alpha_p[k] = yc[j] < 2e-3 ? 0.59 : 0.0;
       }
-    vorticity_z(xc, yc, g.velocity_x, g.velocity_y, g.vorticity);
+    {
+      const Grid2D grid(Axis(g.x_nodes, 2), Axis(g.y_nodes, 2));
+      Field2D u(grid), v(grid);
+      for (std::size_t j = 0; j < g.ny(); ++j)
+        for (std::size_t i = 0; i < g.nx(); ++i) {
+          u(static_cast<int>(i), static_cast<int>(j)) = g.velocity_x[i + g.nx() * j];
+          v(static_cast<int>(i), static_cast<int>(j)) = g.velocity_y[i + g.nx() * j];
+        }
+      g.vorticity = vorticity_z(grid, u, v);
+    }
     write_gas_vtr(g, gas_files.next_path(t));
     gas_files.commit(t);
 

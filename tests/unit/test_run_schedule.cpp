@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "solver/sim/checkpoint_keeper.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/time_targets.hpp"
 
@@ -48,7 +49,8 @@ int checkpoints_written(const std::vector<std::string>& overrides, RunEnd* how =
                         std::function<bool(const Simulation&)> stop = {}) {
   Simulation sim(parse_scene(kShock, "shock.toml", overrides));
   int written = 0;
-  sim.set_checkpoint_writer([&](const Simulation&) { ++written; });
+  sim.add_observer(
+      std::make_unique<CheckpointKeeper>(sim.scene().output, [&](const Snapshot&) { ++written; }));
   if (stop) sim.set_stop_request([&] { return stop(sim); });
   const RunEnd end = sim.run("");
   if (how != nullptr) *how = end;
@@ -60,7 +62,8 @@ int checkpoints_written(const std::vector<std::string>& overrides, RunEnd* how =
 TEST(TimeTargets, TheNextMultipleIsFoundAgainstTheProductsNotTheQuotient) {
   const double interval = 5e-5;
   EXPECT_EQ(first_multiple_after(0.0, interval), 1);
-  EXPECT_EQ(first_multiple_after(multiple_time(3, interval), interval), 4);  // 1.5000000000000002e-4 / 5e-5 < 3
+  EXPECT_EQ(first_multiple_after(multiple_time(3, interval), interval),
+            4);  // 1.5000000000000002e-4 / 5e-5 < 3
   EXPECT_EQ(first_multiple_after(std::nextafter(multiple_time(3, interval), 0.0), interval), 3);
   EXPECT_EQ(first_multiple_after(1.5e-4, interval), 3) << "1.5e-4 lies a rounding below 3 * 5e-5";
   EXPECT_EQ(first_multiple_after(7.3e-4, interval), 15);
@@ -79,11 +82,13 @@ TEST(RunSchedule, OutputsAndTheEndAreReachedExactlyAndTheEndOutputIsNotRepeated)
   sim.add_observer(std::make_unique<Times>(&outputs, &finishes));
   EXPECT_EQ(sim.run(""), RunEnd::Completed);
   ASSERT_EQ(outputs.size(), 6u);  // t = 0 and 5 outputs, the last one at the end
-  for (std::size_t k = 0; k < outputs.size(); ++k) EXPECT_EQ(outputs[k], multiple_time(static_cast<long long>(k), 2e-6)) << k;
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    EXPECT_EQ(outputs[k], multiple_time(static_cast<long long>(k), 2e-6)) << k;
   EXPECT_EQ(sim.time(), end_target(1e-5, 2e-6));
   ASSERT_EQ(finishes.size(), 1u);
   EXPECT_EQ(finishes[0], sim.time());
-  EXPECT_EQ(sim.next_output(), 6) << "the output at the end is counted, so an extension goes on to the next";
+  EXPECT_EQ(sim.next_output(), 6)
+      << "the output at the end is counted, so an extension goes on to the next";
   EXPECT_GT(sim.step(), 40);
 }
 
@@ -94,20 +99,26 @@ TEST(RunSchedule, CheckpointsFollowTheSimulatedAndWallCadencesAndTheEnd) {
   // By simulated time: the first steps at or after 2, 4, 6, 8 us, and once at the end (10 us).
   EXPECT_EQ(checkpoints_written({}), 5);
   EXPECT_EQ(checkpoints_written({"output.checkpoint_interval=3e-6"}), 4);  // 3, 6, 9 us + end
-  EXPECT_EQ(checkpoints_written({"output.checkpoint_interval=0", "output.checkpoint_wall_interval=0"}), 1);
+  EXPECT_EQ(
+      checkpoints_written({"output.checkpoint_interval=0", "output.checkpoint_wall_interval=0"}),
+      1);
   // By wall time: a tiny cadence checkpoints after every step (the last one only once).
-  Simulation sim(parse_scene(kShock, "shock.toml", {"output.checkpoint_interval=0", "output.checkpoint_wall_interval=1e-9"}));
+  Simulation sim(
+      parse_scene(kShock, "shock.toml",
+                  {"output.checkpoint_interval=0", "output.checkpoint_wall_interval=1e-9"}));
   int written = 0;
-  sim.set_checkpoint_writer([&](const Simulation&) { ++written; });
+  sim.add_observer(
+      std::make_unique<CheckpointKeeper>(sim.scene().output, [&](const Snapshot&) { ++written; }));
   sim.run("");
   EXPECT_EQ(written, sim.step());
 }
 
 TEST(RunSchedule, CheckpointsDoNotChangeTheSteps) {
   Simulation a(parse_scene(kShock, "shock.toml", {"output.checkpoint_wall_interval=1e-9"}));
-  Simulation b(parse_scene(kShock, "shock.toml", {"output.checkpoint_interval=0", "output.checkpoint_wall_interval=0"}));
-  a.set_checkpoint_writer([](const Simulation&) {});
-  b.set_checkpoint_writer([](const Simulation&) {});
+  Simulation b(parse_scene(kShock, "shock.toml",
+                           {"output.checkpoint_interval=0", "output.checkpoint_wall_interval=0"}));
+  a.add_observer(std::make_unique<CheckpointKeeper>(a.scene().output, [](const Snapshot&) {}));
+  b.add_observer(std::make_unique<CheckpointKeeper>(b.scene().output, [](const Snapshot&) {}));
   a.run("");
   b.run("");
   EXPECT_EQ(a.step(), b.step());
@@ -119,7 +130,8 @@ TEST(RunSchedule, AStopRequestEndsTheRunAfterItsStepWithACheckpointAndNoFinalFra
   Simulation sim(parse_scene(kShock, "shock.toml"));
   sim.add_observer(std::make_unique<Times>(&outputs, &finishes));
   long long checkpointed_at = -1;
-  sim.set_checkpoint_writer([&](const Simulation& s) { checkpointed_at = s.step(); });
+  sim.add_observer(std::make_unique<CheckpointKeeper>(
+      sim.scene().output, [&](const Snapshot& s) { checkpointed_at = s.i64.at("run/step")[0]; }));
   sim.set_stop_request([&] { return sim.step() >= 17; });
   EXPECT_EQ(sim.run(""), RunEnd::Interrupted);
   EXPECT_EQ(sim.step(), 17);
@@ -127,6 +139,9 @@ TEST(RunSchedule, AStopRequestEndsTheRunAfterItsStepWithACheckpointAndNoFinalFra
   EXPECT_TRUE(finishes.empty());
   EXPECT_LT(sim.time(), 1e-5);
   RunEnd how{};
-  EXPECT_EQ(checkpoints_written({"run.max_steps=5", "output.checkpoint_interval=0", "output.checkpoint_wall_interval=0"}, &how), 1);
+  EXPECT_EQ(checkpoints_written({"run.max_steps=5", "output.checkpoint_interval=0",
+                                 "output.checkpoint_wall_interval=0"},
+                                &how),
+            1);
   EXPECT_EQ(how, RunEnd::StepLimit);
 }

@@ -22,6 +22,7 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/vtk_writers.hpp"
+#include "solver/core/derivatives.hpp"
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "support/synthetic_gas.hpp"
@@ -124,8 +125,10 @@ TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
   u(-1, 0) = 1e9;  // ghosts must not leak into the output
   const GasPrimitives prims{&rho, &u, &v, &p, &T, &ag};
   GasCellArrays out;
+  Field2D w(grid);
+  vorticity_z_rows(grid, u, v, 0, grid.ny(), w);
   gather_gas_cells(
-      grid, prims, nullptr, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
+      grid, prims, nullptr, w, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
   ASSERT_EQ(out.nx(), 4u);
   ASSERT_EQ(out.ny(), 3u);
   EXPECT_EQ(out.x_nodes, grid.x().interior_faces());

@@ -1,0 +1,120 @@
+// Simulation: what a run switches on and what it did, for the log and `dustlift info`.
+#include <algorithm>
+#include <sstream>
+
+#include "solver/sim/simulation.hpp"
+#include "solver/sim/slab_driver.hpp"
+
+namespace dustlift {
+namespace {
+
+std::string fmt_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<std::string> Simulation::enabled_effects() const {
+  std::vector<std::string> e;
+  const auto& g = scene_.gas;
+  e.push_back(g.thermo.model == ThermoModel::ThermallyPerfect
+                  ? "gas: thermally perfect air (NASA polynomials, O2:N2 = 1:3.76)"
+                  : "gas: calorically perfect (gamma = " + fmt_number(g.thermo.gamma) + ")");
+  switch (g.transport.model) {
+    case TransportModel::Inviscid:
+      e.push_back("viscosity: off (Euler)");
+      break;
+    case TransportModel::Constant:
+      e.push_back("viscosity + heat conduction: constant mu, Pr");
+      break;
+    case TransportModel::Sutherland:
+      e.push_back("viscosity + heat conduction: Sutherland");
+      break;
+    case TransportModel::GordonWilke:
+      e.push_back("viscosity + heat conduction: Gordon fits + Wilke rule");
+      break;
+  }
+  const char* rec = g.scheme.reconstruction == Reconstruction::FirstOrder ? "1st order"
+                    : g.scheme.reconstruction == Reconstruction::Muscl2
+                        ? "MUSCL 2nd order"
+                        : "MUSCL 3rd order (kappa = 1/3)";
+  e.push_back(std::string("convection: SLAU2 + ") + rec + ", SSP-RK3");
+  if (g.has_gravity())
+    e.push_back("gravity on the gas: [" + fmt_number(g.gravity_x) + ", " + fmt_number(g.gravity_y) +
+                "] m/s^2 (no cell skipped at rest)");
+  else if (!scene_.run.skip_at_rest)
+    e.push_back("skipping at rest: off (every cell and parcel computed every step)");
+  else if (scene_.run.rest_tolerance > 0.0)
+    e.push_back("skipping at rest: within a relative " + fmt_number(scene_.run.rest_tolerance) +
+                " of the resting state (also skips the rounding noise ahead of a shock; results "
+                "change at that level)");
+  else
+    e.push_back("skipping at rest: exact (bitwise the same results as without)");
+  if (!scene_.particles.enabled) {
+    e.push_back("particles: none (gas only)");
+    return e;
+  }
+  const auto& d = scene_.particles;
+  const auto& c = scene_.coupling;
+  std::ostringstream s;
+  s << "particles: " << (parcels_ ? parcels_->size() : 0) << " DEM parcels of "
+    << d.parcel_diameter * 1e6 << " um holding " << d.real_per_parcel << " real particles of "
+    << d.particle_diameter * 1e6 << " um per metre; spring-dashpot contacts (k_n " << d.contact.k_n
+    << " N/m, k_t " << d.contact.k_t << " N/m, h " << d.contact.damping << " N s/m)";
+  e.push_back(s.str());
+  e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"
+                        : "coupling: one-way (gas does not feel the particles)");
+  if (coupling_) {
+    for (const std::string& m : coupling_->model_descriptions()) e.push_back(m);
+  }
+  if (d.gravity_x != 0.0 || d.gravity_y != 0.0) {
+    e.push_back("gravity on the parcels: (" + fmt_number(d.gravity_x) + ", " +
+                fmt_number(d.gravity_y) + ") m/s^2");
+  }
+  return e;
+}
+
+std::string Simulation::work_summary() const {
+  std::ostringstream s;
+  const double full = 3.0 * static_cast<double>(whole_grid_.interior_cells()) *
+                      static_cast<double>(step_ - first_step_);
+  const long long updates = slabs_
+                                ? slabs_->comm().sum(slabs_->cell_updates() - first_cell_updates_)
+                                : gas_->cell_updates() - first_cell_updates_;
+  s << "work: gas " << updates << " cell-stage updates ("
+    << (full > 0.0 ? 100.0 * static_cast<double>(updates) / full : 0.0) << " % of the full grid)";
+  if (slabs_) s << slabs_->exchange_summary(std::max<long long>(step_ - first_step_, 1));
+  if (parcels_) {
+    const long long substeps = parcels_->steps() - first_dem_steps_;
+    const long long stepped = parcels_->parcel_substeps() - first_parcel_substeps_;
+    // On several ranks summed over the ranks, rank copies included (they are integrated,
+    // then overwritten by their owners' states).
+    const long long stepped_all = slabs_ ? slabs_->comm().sum(stepped) : stepped;
+    const double parcels = static_cast<double>(total_parcels_);
+    s << "; DEM " << substeps << " sub-steps of " << total_parcels_ << " parcels, " << stepped_all
+      << " parcel-sub-steps ("
+      << (substeps > 0
+              ? 100.0 * static_cast<double>(stepped_all) / (static_cast<double>(substeps) * parcels)
+              : 0.0)
+      << " %), " << parcels_->neighbour_rebuilds() - first_rebuilds_ << " neighbour rebuilds";
+  }
+  s.precision(3);
+  s << "\ntime: gas " << timings_.gas << " s";
+  if (parcels_) {
+    const auto& c = coupling_->timings();
+    const auto& d = parcels_->timings();
+    s << ", coupling sample " << c.sample << " s, relief " << c.relief << " s, deposit "
+      << c.deposit << " s, DEM contacts " << d.contacts << " s, integration " << d.integrate
+      << " s, rebuilds " << d.rebuild << " s";
+  }
+  s << ", observers " << timings_.observers << " s, checkpoints " << timings_.checkpoints << " s";
+  if (slabs_) {
+    s << ", moving slab cuts " << timings_.balance << " s";
+    s << slabs_->time_per_rank(timings_.gas);
+  }
+  return s.str();
+}
+
+}  // namespace dustlift
