@@ -79,11 +79,11 @@ struct GasSolver::Impl {
   bool threaded;
   double R;
 
-  std::array<Field2D, 4> U, U0, source;
+  std::array<Field2D, Conserved::kCount> U, U0, source;
   Field2D rho, u, v, p, T, alpha, mu, lambda;
   /// Porosity-weighted convective face fluxes: x-faces (nx+1) per row, y-face rows (ny+1) of
   /// nx; and the face pressures p~ (unweighted) on the same faces.
-  std::array<std::vector<double>, 4> fx, fy;
+  std::array<std::vector<double>, Conserved::kCount> fx, fy;
   std::vector<double> fx_pressure, fy_pressure;
   /// Per y-face row (ny+1) and x-face row (ny): the thread that computes it before the fused
   /// loop, or -1 (fluxes_and_update); set for face_owners_for_threads threads.
@@ -136,7 +136,7 @@ struct GasSolver::Impl {
         skip_resting(c.skip_resting_cells && !c.has_gravity()) {
     if (ng < 2) throw std::invalid_argument("GasSolver: the grid needs at least 2 ghost layers");
     if (nx < 1 || ny < 1) throw std::invalid_argument("GasSolver: the grid has no cells");
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < Conserved::kCount; ++k) {
       U[k] = Field2D(grid);
       U0[k] = Field2D(grid);
       source[k] = Field2D(grid);
@@ -191,8 +191,8 @@ struct GasSolver::Impl {
   // ---------------------------------------------------------------- primitives
   /// The checks of one cell after its primitives were set.
   CellFault classify(std::size_t c, double pp) const {
-    if (!(std::isfinite(U[0].data()[c]) && std::isfinite(U[1].data()[c]) && std::isfinite(U[2].data()[c]) &&
-          std::isfinite(U[3].data()[c]))) {
+    if (!(std::isfinite(U[Conserved::kMass].data()[c]) && std::isfinite(U[Conserved::kMomentumX].data()[c]) &&
+          std::isfinite(U[Conserved::kMomentumY].data()[c]) && std::isfinite(U[Conserved::kEnergy].data()[c]))) {
       return CellFault::NotFinite;
     }
     if (!(rho.data()[c] > 0.0)) return CellFault::Density;
@@ -208,10 +208,10 @@ struct GasSolver::Impl {
     const std::size_t c = at(i, j);
     const double a = alpha.data()[c];
     const double t = temperature_of(s, R);
-    U[0].data()[c] = a * s.rho;
-    U[1].data()[c] = a * s.rho * s.u;
-    U[2].data()[c] = a * s.rho * s.v;
-    U[3].data()[c] = a * s.rho * (th.internal_energy(t) + 0.5 * (s.u * s.u + s.v * s.v));
+    U[Conserved::kMass].data()[c] = a * s.rho;
+    U[Conserved::kMomentumX].data()[c] = a * s.rho * s.u;
+    U[Conserved::kMomentumY].data()[c] = a * s.rho * s.v;
+    U[Conserved::kEnergy].data()[c] = a * s.rho * (th.internal_energy(t) + 0.5 * (s.u * s.u + s.v * s.v));
     rho.data()[c] = s.rho;
     u.data()[c] = s.u;
     v.data()[c] = s.v;
@@ -389,8 +389,8 @@ struct GasSolver::Impl {
                              alpha.data() + lo, alpha.data() + hi,
                              u.data() + lo - up, u.data() + lo + up, u.data() + hi - up, u.data() + hi + up,
                              v.data() + lo - up, v.data() + lo + up, v.data() + hi - up, v.data() + hi + up};
-    viscous_x_faces(c, inv_dxc.data() + static_cast<std::size_t>(f0 - 1 + ng), geo(inv_dy2, j), fx[1].data() + row,
-                    fx[2].data() + row, fx[3].data() + row, f1 - f0);
+    viscous_x_faces(c, inv_dxc.data() + static_cast<std::size_t>(f0 - 1 + ng), geo(inv_dy2, j), fx[Conserved::kMomentumX].data() + row,
+                    fx[Conserved::kMomentumY].data() + row, fx[Conserved::kEnergy].data() + row, f1 - f0);
   }
 
   /// Same for the y-faces [i0, i1) of face row jf (face (i, jf) between cells (i, jf-1), (i, jf)).
@@ -402,8 +402,8 @@ struct GasSolver::Impl {
                              alpha.data() + lo, alpha.data() + hi,
                              u.data() + lo - 1, u.data() + lo + 1, u.data() + hi - 1, u.data() + hi + 1,
                              v.data() + lo - 1, v.data() + lo + 1, v.data() + hi - 1, v.data() + hi + 1};
-    viscous_y_faces(c, geo(inv_dyc, jf - 1), inv_dx2.data() + static_cast<std::size_t>(i0 + ng), fy[1].data() + row,
-                    fy[2].data() + row, fy[3].data() + row, i1 - i0);
+    viscous_y_faces(c, geo(inv_dyc, jf - 1), inv_dx2.data() + static_cast<std::size_t>(i0 + ng), fy[Conserved::kMomentumX].data() + row,
+                    fy[Conserved::kMomentumY].data() + row, fy[Conserved::kEnergy].data() + row, i1 - i0);
   }
 
   /// x-faces [row_lo, row_hi] of row j: those of its active cells (face f lies between
@@ -415,8 +415,8 @@ struct GasSolver::Impl {
     if (f1 - f0 < 2) return;
     const std::size_t row = static_cast<std::size_t>(j) * nf + static_cast<std::size_t>(f0);
     inviscid_flux_row(th, muscl, face_row_input(at(f0 - 1, j), 1, f1 - f0), thread_scratch(),
-                      {fx[0].data() + row, fx[1].data() + row, fx[2].data() + row, fx[3].data() + row,
-                       fx_pressure.data() + row},
+                      {fx[Conserved::kMass].data() + row, fx[Conserved::kMomentumX].data() + row, fx[Conserved::kMomentumY].data() + row,
+                       fx[Conserved::kEnergy].data() + row, fx_pressure.data() + row},
                       1.0, 0.0);
     if (viscous) viscous_x_row(j, f0, f1);
   }
@@ -444,8 +444,8 @@ struct GasSolver::Impl {
     if (i1 <= i0) return;
     const std::size_t row = static_cast<std::size_t>(jf) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i0);
     inviscid_flux_row(th, muscl, face_row_input(at(i0, jf - 1), step, i1 - i0), thread_scratch(),
-                      {fy[0].data() + row, fy[1].data() + row, fy[2].data() + row, fy[3].data() + row,
-                       fy_pressure.data() + row},
+                      {fy[Conserved::kMass].data() + row, fy[Conserved::kMomentumX].data() + row, fy[Conserved::kMomentumY].data() + row,
+                       fy[Conserved::kEnergy].data() + row, fy_pressure.data() + row},
                       0.0, 1.0);
     if (viscous) viscous_y_row(jf, i0, i1);
   }
@@ -517,7 +517,7 @@ struct GasSolver::Impl {
     const std::size_t kx = static_cast<std::size_t>(j) * nfx + static_cast<std::size_t>(i0);
     const std::size_t ky = static_cast<std::size_t>(j) * nfy + static_cast<std::size_t>(i0);
     StageRow r{};
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < Conserved::kCount; ++k) {
       r.U0[k] = U0[k].data() + c;
       r.U[k] = U[k].data() + c;
       r.source[k] = source[k].data() + c;
@@ -555,7 +555,7 @@ struct GasSolver::Impl {
     auto copy = [&](int a, int b) {
       if (b <= a) return;
       const std::size_t c = at(a, j), n = static_cast<std::size_t>(b - a);
-      for (int q = 0; q < 4; ++q) std::copy_n(U[q].data() + c, n, U0[q].data() + c);
+      for (int q = 0; q < Conserved::kCount; ++q) std::copy_n(U[q].data() + c, n, U0[q].data() + c);
     };
     if (lo >= hi) {
       copy(i0, i1);
@@ -612,8 +612,8 @@ struct GasSolver::Impl {
 #pragma omp parallel for if (threaded) schedule(static)
     for (int j = 0; j < ny; ++j) {
       const std::size_t c = at(0, j);
-      const double* const rows[4] = {source[0].data() + c, source[1].data() + c, source[2].data() + c,
-                                     source[3].data() + c};
+      const double* const rows[Conserved::kCount] = {source[Conserved::kMass].data() + c, source[Conserved::kMomentumX].data() + c,
+                                                     source[Conserved::kMomentumY].data() + c, source[Conserved::kEnergy].data() + c};
       source_rows[static_cast<std::size_t>(j)] = source_extent(rows, nx);
     }
   }
@@ -738,11 +738,13 @@ struct GasSolver::Impl {
         << " m, y = " << grid.y().center(j) << " m: ";
       switch (fault_kind[static_cast<std::size_t>(j)]) {
         case CellFault::NotFinite:
-          m << "conserved variables not finite (a rho = " << U[0].data()[c] << ", a rho u = " << U[1].data()[c]
-            << ", a rho v = " << U[2].data()[c] << ", a E = " << U[3].data()[c] << ")";
+          m << "conserved variables not finite (a rho = " << U[Conserved::kMass].data()[c]
+            << ", a rho u = " << U[Conserved::kMomentumX].data()[c] << ", a rho v = " << U[Conserved::kMomentumY].data()[c]
+            << ", a E = " << U[Conserved::kEnergy].data()[c] << ")";
           break;
         case CellFault::Density:
-          m << "density rho = " << rho.data()[c] << " kg/m^3 (a rho = " << U[0].data()[c] << ") is not positive";
+          m << "density rho = " << rho.data()[c] << " kg/m^3 (a rho = " << U[Conserved::kMass].data()[c]
+            << ") is not positive";
           break;
         default:
           m << "pressure p = " << p.data()[c] << " Pa is not positive (T = " << T.data()[c] << " K)";
@@ -771,7 +773,8 @@ struct GasSolver::Impl {
 
   PrimitiveRow primitive_row(int j, int i0, int i1) {
     const std::size_t c = at(i0, j);
-    return {{U[0].data() + c, U[1].data() + c, U[2].data() + c, U[3].data() + c},
+    return {{U[Conserved::kMass].data() + c, U[Conserved::kMomentumX].data() + c,
+             U[Conserved::kMomentumY].data() + c, U[Conserved::kEnergy].data() + c},
             alpha.data() + c,
             R,
             rho.data() + c,
@@ -805,10 +808,10 @@ struct GasSolver::Impl {
           // compression by the volume the particles took or gave back: to first order exactly
           // the -p d(alpha_g) work of eq. (3), and unlike the linear form it cannot drive the
           // internal energy negative when alpha_g changes by a large fraction in one step.
-          const double m = U[0].data()[c], mx = U[1].data()[c], my = U[2].data()[c];
+          const double m = U[Conserved::kMass].data()[c], mx = U[Conserved::kMomentumX].data()[c], my = U[Conserved::kMomentumY].data()[c];
           const double kinetic = 0.5 * (mx * mx + my * my) / m;
           const double g = th.gamma(T.data()[c]);
-          U[3].data()[c] = kinetic + (U[3].data()[c] - kinetic) * std::pow(a_old / a_new, g - 1.0);
+          U[Conserved::kEnergy].data()[c] = kinetic + (U[Conserved::kEnergy].data()[c] - kinetic) * std::pow(a_old / a_new, g - 1.0);
           alpha.data()[c] = a_new;
           sc.changed[i] = 1.0;
           first = std::min(first, i);
@@ -837,10 +840,10 @@ struct GasSolver::Impl {
       for (int i = 0; i < nx && first_fault < 0; ++i) {
         const std::size_t c = at(i, j);
         bool finite = true;
-        for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(U[k].data()[c]);
+        for (int k = 0; k < Conserved::kCount; ++k) finite = finite && std::isfinite(U[k].data()[c]);
         if (!finite) {
           kind = CellFault::NotFinite;
-        } else if (!(rho.data()[c] > 0.0) || !(U[0].data()[c] > 0.0)) {
+        } else if (!(rho.data()[c] > 0.0) || !(U[Conserved::kMass].data()[c] > 0.0)) {
           kind = CellFault::Density;
         } else if (!(p.data()[c] > 0.0)) {
           kind = CellFault::Pressure;
@@ -983,10 +986,10 @@ GasTotals GasSolver::totals() const {
     GasTotals row;
     for (int i = 0; i < m.nx; ++i) {
       const double area = m.grid.area(i, j);
-      row.mass += m.U[0](i, j) * area;
-      row.momentum_x += m.U[1](i, j) * area;
-      row.momentum_y += m.U[2](i, j) * area;
-      row.energy += m.U[3](i, j) * area;
+      row.mass += m.U[Conserved::kMass](i, j) * area;
+      row.momentum_x += m.U[Conserved::kMomentumX](i, j) * area;
+      row.momentum_y += m.U[Conserved::kMomentumY](i, j) * area;
+      row.energy += m.U[Conserved::kEnergy](i, j) * area;
     }
     t.mass += row.mass;
     t.momentum_x += row.momentum_x;
@@ -1063,7 +1066,7 @@ void GasSolver::initialize_porosity(const Field2D& alpha_g) {
     for (int i = 0; i < m.nx; ++i) {
       const double a = alpha_g(i, j);
       const double scale = a / m.alpha(i, j);
-      for (int k = 0; k < 4; ++k) m.U[static_cast<std::size_t>(k)](i, j) *= scale;
+      for (int k = 0; k < Conserved::kCount; ++k) m.U[static_cast<std::size_t>(k)](i, j) *= scale;
       m.alpha(i, j) = a;
     }
   }
@@ -1079,8 +1082,8 @@ Field2D& GasSolver::source(int k) { return impl_->source[static_cast<std::size_t
 Field2D& GasSolver::primitive_field(int k) {
   Impl& m = *impl_;
   m.externally_modified = true;
-  Field2D* fields[5] = {&m.rho, &m.u, &m.v, &m.p, &m.T};
-  if (k < 0 || k > 4) throw std::out_of_range("GasSolver::primitive_field: k must be 0..4");
+  Field2D* fields[Primitive::kCount] = {&m.rho, &m.u, &m.v, &m.p, &m.T};
+  if (k < 0 || k >= Primitive::kCount) throw std::out_of_range("GasSolver::primitive_field: k must be 0..4");
   return *fields[k];
 }
 

@@ -14,6 +14,7 @@
 
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
+#include "solver/gas/gas_components.hpp"
 #include "solver/gas/gas_config.hpp"
 #include "solver/gas/rest_ranges.hpp"
 
@@ -84,7 +85,7 @@ class GasSolver {
   /// Sound speed at cell (i, j) of the current state (for Mach number output).
   double sound_speed(int i, int j) const;
 
-  /// Conservative state access (variable k = 0..3 for a rho, a rho u, a rho v, a E) for
+  /// Conservative state access (k a Conserved component: a rho, a rho u, a rho v, a E) for
   /// checkpoints and tests. After writing, call refresh_primitives().
   Field2D& conserved(int k);
   const Field2D& conserved(int k) const;
@@ -108,7 +109,8 @@ class GasSolver {
   /// of eqs. 2-3); zero by default, held constant over one step(). k as in conserved().
   Field2D& source(int k);
 
-  /// Checkpoint restore only: primitive field k = 0..4 (rho, u, v, p, T), ghosts included.
+  /// Checkpoint restore only: primitive field k (a Primitive component: rho, u, v, p, T),
+  /// ghosts included.
   /// The thermally perfect inversion e -> T starts its Newton iteration from the stored T,
   /// so recomputing the primitives from conserved(k) would change their last bits; a bitwise
   /// continuation writes them back as saved (with conserved, porosity and source) and does
