@@ -7,14 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <span>
 #include <sstream>
 #include <variant>
 #include <vector>
 
 #include "solver/core/errors.hpp"
 #include "solver/gas/flux_rows.hpp"
-#include "solver/gas/gas_halo.hpp"
+#include "solver/gas/boundary_fillers.hpp"
+#include "solver/gas/ghost_filler.hpp"
 #include "solver/gas/muscl.hpp"
 #include "solver/gas/rest_ranges.hpp"
 #include "solver/gas/shock_relations.hpp"
@@ -40,30 +40,6 @@ Thermo make_thermo(const ThermoConfig& c) {
 
 /// Which check a cell failed (0: none).
 enum class CellFault { None, NotFinite, Density, Pressure };
-
-/// Sign applied to the (x, y) velocity components when mirroring into a ghost cell.
-struct MirrorSigns {
-  double su, sv;
-};
-
-/// Ghost velocity signs for a boundary whose normal is along x (normal_is_x) or y.
-MirrorSigns mirror_signs(BoundaryKind k, bool normal_is_x) {
-  if (k == BoundaryKind::SlipWall) return normal_is_x ? MirrorSigns{-1.0, 1.0} : MirrorSigns{1.0, -1.0};
-  if (k == BoundaryKind::NoSlipWall) return {-1.0, -1.0};
-  return {1.0, 1.0};
-}
-
-/// Interior cell whose values ghost layer g (0 = adjacent) on the low side takes.
-int low_side_source(BoundaryKind k, int g, int n) {
-  if (k == BoundaryKind::Periodic) return ((n - 1 - g) % n + n) % n;
-  if (k == BoundaryKind::Outflow) return 0;
-  return std::min(g, n - 1);  // walls (mirror); inflow uses its state instead
-}
-int high_side_source(BoundaryKind k, int g, int n) {
-  if (k == BoundaryKind::Periodic) return g % n;
-  if (k == BoundaryKind::Outflow) return n - 1;
-  return std::max(n - 1 - g, 0);
-}
 
 }  // namespace
 
@@ -106,8 +82,6 @@ struct GasSolver::Impl {
   /// Geometry per index (ghosts included, offset ng): 1/width, 1/(c_{i+1}-c_i),
   /// 1/(c_{i+1}-c_{i-1}).
   std::vector<double> inv_dx, inv_dy, inv_dxc, inv_dyc, inv_dx2, inv_dy2;
-  /// Inflow states along each boundary (one per boundary cell).
-  std::vector<PrimitiveState> inflow_left, inflow_right, inflow_bottom, inflow_top;
   /// Per-thread scratch rows of the flux and stage kernels (kScratchRows arrays of scratch_len).
   /// Mutable: stable_dt (const) uses it too.
   mutable std::vector<double> scratch;
@@ -120,14 +94,14 @@ struct GasSolver::Impl {
   /// The state was written from outside (initialize, a checkpoint, a test): check it before
   /// the next step. The solver's own updates check every cell they change.
   bool externally_modified = true;
-  /// On a slab of a decomposed grid: fills the shared ghost columns (null: the whole grid).
-  GasHalo* halo = nullptr;
-  bool own_left = true, own_right = true;  ///< boundary conditions at this grid's x-ends
-  int first_column = 0;                    ///< index of column 0 in the whole grid
-  /// On a slab with skipping: 1 in a row's edge columns when the previous stage updated cells
-  /// there, exchanged with the primitives; its ghost columns then say where the neighbour's
-  /// stage changed cells this slab's stencils read (widen_active_ranges).
-  Field2D edge_activity;
+  /// Per GridSide: this grid's boundary condition, the filler set in its place
+  /// (set_ghost_filler; null: none) and the one used. Local fillers run in the parallel
+  /// regions; the collective ones (distinct, in side order, null after the last) after them.
+  std::array<std::unique_ptr<GhostFiller>, 4> boundary;
+  std::array<GhostFiller*, 4> replaced{}, filler{};
+  std::array<bool, 4> local{};
+  std::array<GhostFiller*, 2> collective{};
+  FaultReporting fault_reporting;
 
   Impl(const Grid2D& g, const GasConfig& c)
       : grid(g), config(c), thermo(make_thermo(c.thermo)), muscl(muscl_settings(c.scheme)),
@@ -168,6 +142,7 @@ struct GasSolver::Impl {
     build_geometry(grid.y(), inv_dy, inv_dyc, inv_dy2);
     fault_i.assign(static_cast<std::size_t>(ny), -1);
     fault_kind.assign(static_cast<std::size_t>(ny), CellFault::None);
+    make_boundaries({});
     ensure_scratch();
   }
 
@@ -220,84 +195,68 @@ struct GasSolver::Impl {
   }
 
   // ---------------------------------------------------------------- boundaries
-  void set_ghost(std::size_t dst, const PrimitiveState& s) {
-    rho.data()[dst] = s.rho;
-    u.data()[dst] = s.u;
-    v.data()[dst] = s.v;
-    p.data()[dst] = s.p;
-    T.data()[dst] = temperature_of(s, R);
-  }
-  void copy_ghost(std::size_t dst, std::size_t src, MirrorSigns s) {
-    rho.data()[dst] = rho.data()[src];
-    u.data()[dst] = s.su * u.data()[src];
-    v.data()[dst] = s.sv * v.data()[src];
-    p.data()[dst] = p.data()[src];
-    T.data()[dst] = T.data()[src];
+  /// This grid's boundary conditions, an inflow imposing inflow[side] (see PhysicalBoundary).
+  void make_boundaries(std::array<std::vector<PrimitiveState>, 4> inflow) {
+    for (GridSide side : kGridSides) {
+      const std::size_t k = side_index(side);
+      boundary[k] = make_boundary_filler(side, boundary_kind(config.boundary, side), grid, R,
+                                         std::move(inflow[k]));
+    }
+    resolve_fillers();
   }
 
-  void fill_x_ghosts_row(int j) {
-    const BoundaryConfig& b = config.boundary;
-    const MirrorSigns sl = mirror_signs(b.left, true), sr = mirror_signs(b.right, true);
-    // Only at the ends this grid owns (a slab's other ends are its neighbours' columns).
-    for (int g = 0; g < ng; ++g) {
-      if (own_left) {
-        if (b.left == BoundaryKind::Inflow) {
-          set_ghost(at(-1 - g, j), inflow_left[static_cast<std::size_t>(j)]);
-        } else {
-          copy_ghost(at(-1 - g, j), at(low_side_source(b.left, g, nx), j), sl);
-        }
-      }
-      if (own_right) {
-        if (b.right == BoundaryKind::Inflow) {
-          set_ghost(at(nx + g, j), inflow_right[static_cast<std::size_t>(j)]);
-        } else {
-          copy_ghost(at(nx + g, j), at(high_side_source(b.right, g, nx), j), sr);
-        }
-      }
+  void resolve_fillers() {
+    collective = {};
+    std::size_t n = 0;
+    for (GridSide side : kGridSides) {
+      const std::size_t k = side_index(side);
+      filler[k] = replaced[k] != nullptr ? replaced[k] : boundary[k].get();
+      local[k] = !filler[k]->collective();
+      if (!local[k] && (n == 0 || collective[n - 1] != filler[k])) collective[n++] = filler[k];
     }
   }
 
-  /// Column i in [-ng, nx+ng): fills the corners from the x-ghosts already set.
-  void fill_y_ghosts_column(int i) {
-    const BoundaryConfig& b = config.boundary;
-    const MirrorSigns sb = mirror_signs(b.bottom, false), st = mirror_signs(b.top, false);
-    const auto edge = static_cast<std::size_t>(std::clamp(i, 0, nx - 1));
-    for (int g = 0; g < ng; ++g) {
-      if (b.bottom == BoundaryKind::Inflow) {
-        set_ghost(at(i, -1 - g), inflow_bottom[edge]);
-      } else {
-        copy_ghost(at(i, -1 - g), at(i, low_side_source(b.bottom, g, ny)), sb);
-      }
-      if (b.top == BoundaryKind::Inflow) {
-        set_ghost(at(i, ny + g), inflow_top[edge]);
-      } else {
-        copy_ghost(at(i, ny + g), at(i, high_side_source(b.top, g, ny)), st);
-      }
-    }
+  PrimitiveGhosts primitive_ghosts() {
+    return {{&rho, &u, &v, &p, &T},
+            skip_resting ? row_lo.data() : nullptr,
+            skip_resting ? row_hi.data() : nullptr};
   }
 
-  /// Porosity ghosts: periodic wraps, every other kind mirrors (zero normal gradient).
+  /// The ghosts of the sides filled from this grid's own cells, by every thread of a
+  /// parallel region (or outside one). The x-sides first: the y-sides' corners read them.
+  void fill_local_ghosts() {
+    const PrimitiveGhosts ghosts = primitive_ghosts();
+    for (GridSide side : {GridSide::Left, GridSide::Right}) {
+      if (local[side_index(side)]) filler[side_index(side)]->fill(ghosts);
+    }
+#pragma omp barrier
+    for (GridSide side : {GridSide::Bottom, GridSide::Top}) {
+      if (local[side_index(side)]) filler[side_index(side)]->fill(ghosts);
+    }
+#pragma omp barrier
+  }
+
+  /// The collective fillers' ghosts (outside a parallel region, after the local ones).
+  void fill_collective_ghosts() {
+    for (GhostFiller* c : collective) {
+      if (c != nullptr) c->fill(primitive_ghosts());
+    }
+  }
+  bool has_collective_fillers() const { return collective[0] != nullptr; }
+
+  /// Every ghost of the primitive fields, outside a parallel region.
+  void fill_ghosts() {
+#pragma omp parallel if (threaded)
+    fill_local_ghosts();
+    fill_collective_ghosts();
+  }
+
   void fill_porosity_ghosts() {
-    const BoundaryConfig& b = config.boundary;
-    for (int j = 0; j < ny; ++j) {
-      for (int g = 0; g < ng; ++g) {
-        const int l = b.left == BoundaryKind::Periodic ? low_side_source(b.left, g, nx) : std::min(g, nx - 1);
-        const int r = b.right == BoundaryKind::Periodic ? high_side_source(b.right, g, nx) : std::max(nx - 1 - g, 0);
-        if (own_left) alpha(-1 - g, j) = alpha(l, j);
-        if (own_right) alpha(nx + g, j) = alpha(r, j);
-      }
+    for (GridSide side : kGridSides) {
+      if (local[side_index(side)]) filler[side_index(side)]->fill_porosity(alpha);
     }
-    for (int i = -ng; i < nx + ng; ++i) {
-      for (int g = 0; g < ng; ++g) {
-        const int lo = b.bottom == BoundaryKind::Periodic ? low_side_source(b.bottom, g, ny) : std::min(g, ny - 1);
-        const int hi = b.top == BoundaryKind::Periodic ? high_side_source(b.top, g, ny) : std::max(ny - 1 - g, 0);
-        alpha(i, -1 - g) = alpha(i, lo);
-        alpha(i, ny + g) = alpha(i, hi);
-      }
-    }
-    if (halo != nullptr) {
-      Field2D* const fields[] = {&alpha};
-      halo->exchange_columns(fields);
+    for (GhostFiller* c : collective) {
+      if (c != nullptr) c->fill_porosity(alpha);
     }
   }
 
@@ -635,14 +594,15 @@ struct GasSolver::Impl {
           lo = std::min(lo, widened_lo_[k] - ng);
           hi = std::max(hi, widened_hi_[k] + ng);
         }
-        // A slab's edge cells read the neighbour's edge columns: where its previous stage
-        // changed them (within the stencil's rows), they are updated too.
-        if (halo != nullptr) {
-          bool left = false, right = false;
-          for (int r = std::max(j - ng, 0); r <= std::min(j + ng, ny - 1); ++r) {
-            left = left || (!own_left && edge_activity(-1, r) != 0.0);
-            right = right || (!own_right && edge_activity(nx, r) != 0.0);
-          }
+        // The edge cells read ghosts copied from another process's cells: where its previous
+        // stage updated those (within the stencil's rows), they are updated too.
+        if (has_collective_fillers()) {
+          const int r0 = std::max(j - ng, 0), r1 = std::min(j + ng, ny - 1) + 1;
+          const auto changed = [&](GridSide side) {
+            const std::size_t k = side_index(side);
+            return !local[k] && filler[k]->changed_beyond(side, r0, r1);
+          };
+          const bool left = changed(GridSide::Left), right = changed(GridSide::Right);
           if (left) {
             lo = std::min(lo, 0);
             hi = std::max(hi, std::min(ng, nx));
@@ -664,50 +624,14 @@ struct GasSolver::Impl {
     return dustlift::rest_reference(u.data()[c], v.data()[c], p.data()[c], T.data()[c], rho.data()[c], config.rest_tolerance);
   }
 
-  void fill_ghosts_parallel() {
-#pragma omp for schedule(static)
-    for (int j = 0; j < ny; ++j) fill_x_ghosts_row(j);
-#pragma omp for schedule(static)
-    for (int i = -ng; i < nx + ng; ++i) fill_y_ghosts_column(i);
-  }
-
-  /// Every ghost of the primitive fields, outside a parallel region: the boundary conditions,
-  /// then (on a slab of a decomposed grid) the columns shared with the neighbouring slabs.
-  void fill_ghosts() {
-#pragma omp parallel if (threaded)
-    fill_ghosts_parallel();
-    exchange_primitive_columns();
-  }
-  void exchange_primitive_columns() {
-    if (halo == nullptr) return;
-    // The edge activity rides along only where skipping uses it.
-    Field2D* const fields[] = {&rho, &u, &v, &p, &T, &edge_activity};
-    halo->exchange_columns(std::span<Field2D* const>(fields).first(skip_resting ? 6 : 5));
-  }
-
-  /// Marks the edge columns of each row that this stage's ranges reach (see edge_activity).
-  void mark_edge_activity() {
-    for (int j = 0; j < ny; ++j) {
-      const auto k = static_cast<std::size_t>(j);
-      const bool active = row_lo[k] < row_hi[k];
-      const double left = active && row_lo[k] < ng ? 1.0 : 0.0;
-      const double right = active && row_hi[k] > nx - ng ? 1.0 : 0.0;
-      for (int g = 0; g < ng; ++g) {
-        edge_activity(g, j) = left;
-        edge_activity(nx - 1 - g, j) = right;
-      }
-    }
-  }
-
   template <class Th>
   void stage(const Th& th, double dt, double c_new) {
-    if (halo != nullptr) {
-      if (skip_resting) mark_edge_activity();  // the previous stage's ranges
-      fill_ghosts();
-    }
+    // Collective fillers need the ghosts filled outside the stage's parallel region.
+    const bool collective_fill = has_collective_fillers();
+    if (collective_fill) fill_ghosts();
 #pragma omp parallel if (threaded)
     {
-      if (halo == nullptr) fill_ghosts_parallel();
+      if (!collective_fill) fill_local_ghosts();
       if (c_new == 1.0) {
         compute_active_ranges();
       } else {
@@ -722,7 +646,7 @@ struct GasSolver::Impl {
 
   void throw_on_fault() const {
     std::string message = fault_message();
-    if (halo != nullptr) message = halo->first_failure(message);
+    if (fault_reporting.agree) message = fault_reporting.agree(message);
     if (!message.empty()) throw NumericalFailure(message);
   }
 
@@ -734,7 +658,7 @@ struct GasSolver::Impl {
       const std::size_t c = at(i, j);
       std::ostringstream m;
       m.precision(6);
-      m << "gas cell (i, j) = (" << i + first_column << ", " << j << ") at x = " << grid.x().center(i)
+      m << "gas cell (i, j) = (" << i + fault_reporting.first_column << ", " << j << ") at x = " << grid.x().center(i)
         << " m, y = " << grid.y().center(j) << " m: ";
       switch (fault_kind[static_cast<std::size_t>(j)]) {
         case CellFault::NotFinite:
@@ -766,9 +690,9 @@ struct GasSolver::Impl {
         for (int i = 0; i < nx; ++i) sc.changed[i] = 1.0;
         (void)primitives_row(th, primitive_row(j, 0, nx), sc);
       }
-      fill_ghosts_parallel();
+      fill_local_ghosts();
     }
-    exchange_primitive_columns();
+    fill_collective_ghosts();
   }
 
   PrimitiveRow primitive_row(int j, int i0, int i1) {
@@ -927,16 +851,19 @@ struct GasSolver::Impl {
     return {rho(i, j), u(i, j), v(i, j), p(i, j), T(i, j)};
   }
 
+  /// The boundary conditions with their inflow states: as given, else the initial state next
+  /// to the boundary (e.g. the post-shock state).
   void record_inflow_states() {
     const BoundaryConfig& b = config.boundary;
-    auto record = [&](std::vector<PrimitiveState>& out, int n, auto cell) {
-      out.resize(static_cast<std::size_t>(n));
+    auto record = [&](int n, auto cell) {
+      std::vector<PrimitiveState> out(static_cast<std::size_t>(n));
       for (int k = 0; k < n; ++k) out[static_cast<std::size_t>(k)] = b.inflow_given ? b.inflow : cell(k);
+      return out;
     };
-    record(inflow_left, ny, [&](int j) { return state_at(0, j); });
-    record(inflow_right, ny, [&](int j) { return state_at(nx - 1, j); });
-    record(inflow_bottom, nx, [&](int i) { return state_at(i, 0); });
-    record(inflow_top, nx, [&](int i) { return state_at(i, ny - 1); });
+    make_boundaries({record(ny, [&](int j) { return state_at(0, j); }),
+                     record(ny, [&](int j) { return state_at(nx - 1, j); }),
+                     record(nx, [&](int i) { return state_at(i, 0); }),
+                     record(nx, [&](int i) { return state_at(i, ny - 1); })});
     fill_ghosts();
   }
 };
@@ -962,14 +889,19 @@ void GasSolver::step(double dt) {
   std::visit([&](const auto& th) { impl_->rk3_step(th, dt); }, impl_->thermo);
 }
 
-void GasSolver::set_halo(GasHalo* halo) {
+void GasSolver::set_ghost_filler(GridSide side, GhostFiller* filler) {
+  if (filler != nullptr && filler->collective() && !is_x_side(side)) {
+    throw std::invalid_argument("GasSolver::set_ghost_filler: a collective filler serves an x-side");
+  }
   Impl& m = *impl_;
-  m.halo = halo;
-  m.own_left = halo == nullptr || halo->owns_left_boundary();
-  m.own_right = halo == nullptr || halo->owns_right_boundary();
-  m.first_column = halo == nullptr ? 0 : halo->first_column();
-  m.edge_activity = halo == nullptr ? Field2D() : Field2D(m.grid, 0.0);
+  m.replaced[side_index(side)] = filler;
+  m.resolve_fillers();
   m.externally_modified = true;
+}
+
+void GasSolver::set_fault_reporting(FaultReporting reporting) {
+  impl_->fault_reporting = std::move(reporting);
+  impl_->externally_modified = true;
 }
 
 const Grid2D& GasSolver::grid() const { return impl_->grid; }

@@ -9,18 +9,19 @@
 //  - step(dt) advances one SSP-RK3 step and refreshes the primitive fields;
 //  - primitives() exposes read-only rho, u, v, p, T, alpha_g on the interior+ghost layout.
 #include <array>
+#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_components.hpp"
 #include "solver/gas/gas_config.hpp"
+#include "solver/gas/ghost_filler.hpp"
 #include "solver/gas/rest_ranges.hpp"
 
 namespace dustlift {
-
-class GasHalo;
 
 /// Read-only primitive gas fields (interior cells valid; ghosts as last filled).
 struct GasPrimitives {
@@ -30,6 +31,15 @@ struct GasPrimitives {
   const Field2D* p = nullptr;
   const Field2D* T = nullptr;
   const Field2D* alpha_g = nullptr;  ///< porosity, 1 where no particles
+};
+
+/// How a solver holding one part of a larger grid reports a cell that failed its checks (the
+/// default: its grid is the whole, on its own).
+struct FaultReporting {
+  int first_column = 0;  ///< index in the whole grid of column 0 (messages name cells by it)
+  /// Collective over the parts, at the end of every check: given this part's message ("" when
+  /// its cells passed), the message every part throws ("" when none failed). Empty: no parts.
+  std::function<std::string(const std::string&)> agree;
 };
 
 /// Integrals over the interior: mass (kg/m), x/y momentum, total energy (J/m).
@@ -44,11 +54,13 @@ class GasSolver {
   GasSolver(GasSolver&&) noexcept;
   GasSolver& operator=(GasSolver&&) noexcept;
 
-  /// Makes this solver one slab of a decomposed grid (issue 12; null: the whole grid). Its
-  /// grid is then the slab (Grid2D::slice_x); the halo fills the ghost columns it shares with
-  /// its neighbours at every stage and makes fault checks collective. Set it before
-  /// initialize(); stable_dt() stays local (the caller reduces it over the ranks).
-  void set_halo(GasHalo* halo);
+  /// The ghosts beyond `side` come from `filler` instead of the side's boundary condition
+  /// (null: the boundary condition again), e.g. the neighbouring part's cells where this grid
+  /// is one part of a larger one (solver/parallel/slab_halo.hpp; stable_dt() then stays local:
+  /// the caller reduces it over the parts). `filler` must outlive its use; set it before
+  /// initialize().
+  void set_ghost_filler(GridSide side, GhostFiller* filler);
+  void set_fault_reporting(FaultReporting reporting);
 
   void initialize(const InitialCondition& ic);
   double stable_dt() const;

@@ -109,7 +109,7 @@ void Simulation::build_slab_gas() {
   grid_ = whole_grid_.slice_x(layout_.first_column(), layout_.end_column());
   gas_ = std::make_unique<GasSolver>(grid_, gas_config_);
   halo_ = std::make_unique<SlabHalo>(*comm_, layout_, grid_);
-  gas_->set_halo(halo_.get());
+  halo_->attach(*gas_);
 }
 
 long long Simulation::cell_updates() const { return retired_cell_updates_ + gas_->cell_updates(); }
