@@ -1,5 +1,6 @@
-// The gas on x-slabs over MPI ranks (issue 12), run by ctest as `mpirun -np 2`: every rank
-// runs every test, rank 0 also runs the same scene on one rank and compares bit for bit.
+// The gas on x-slabs over MPI ranks (docs/parallel.md), run by ctest as `mpirun -np 2`:
+// every rank runs every test, rank 0 also runs the same scene on one rank and compares bit
+// for bit.
 #include <gtest/gtest.h>
 #include <omp.h>
 
