@@ -60,6 +60,7 @@ class GasSolver {
   /// the caller reduces it over the parts). `filler` must outlive its use; set it before
   /// initialize().
   void set_ghost_filler(GridSide side, GhostFiller* filler);
+  /// How failed checks are reported (FaultReporting); set it before initialize().
   void set_fault_reporting(FaultReporting reporting);
 
   void initialize(const InitialCondition& ic);

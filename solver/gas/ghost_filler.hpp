@@ -5,6 +5,7 @@
 // part of a larger one, the filler copies the neighbouring part's cells instead (another
 // process's: solver/parallel/slab_halo.hpp). The solver knows only this interface.
 #include <array>
+#include <cstddef>
 
 #include "solver/core/field.hpp"
 #include "solver/gas/gas_components.hpp"
