@@ -9,17 +9,19 @@
 //  - step(dt) advances one SSP-RK3 step and refreshes the primitive fields;
 //  - primitives() exposes read-only rho, u, v, p, T, alpha_g on the interior+ghost layout.
 #include <array>
+#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
+#include "solver/gas/gas_components.hpp"
 #include "solver/gas/gas_config.hpp"
+#include "solver/gas/ghost_filler.hpp"
 #include "solver/gas/rest_ranges.hpp"
 
 namespace dustlift {
-
-class GasHalo;
 
 /// Read-only primitive gas fields (interior cells valid; ghosts as last filled).
 struct GasPrimitives {
@@ -29,6 +31,15 @@ struct GasPrimitives {
   const Field2D* p = nullptr;
   const Field2D* T = nullptr;
   const Field2D* alpha_g = nullptr;  ///< porosity, 1 where no particles
+};
+
+/// How a solver holding one part of a larger grid reports a cell that failed its checks (the
+/// default: its grid is the whole, on its own).
+struct FaultReporting {
+  int first_column = 0;  ///< index in the whole grid of column 0 (messages name cells by it)
+  /// Collective over the parts, at the end of every check: given this part's message ("" when
+  /// its cells passed), the message every part throws ("" when none failed). Empty: no parts.
+  std::function<std::string(const std::string&)> agree;
 };
 
 /// Integrals over the interior: mass (kg/m), x/y momentum, total energy (J/m).
@@ -43,11 +54,14 @@ class GasSolver {
   GasSolver(GasSolver&&) noexcept;
   GasSolver& operator=(GasSolver&&) noexcept;
 
-  /// Makes this solver one slab of a decomposed grid (issue 12; null: the whole grid). Its
-  /// grid is then the slab (Grid2D::slice_x); the halo fills the ghost columns it shares with
-  /// its neighbours at every stage and makes fault checks collective. Set it before
-  /// initialize(); stable_dt() stays local (the caller reduces it over the ranks).
-  void set_halo(GasHalo* halo);
+  /// The ghosts beyond `side` come from `filler` instead of the side's boundary condition
+  /// (null: the boundary condition again), e.g. the neighbouring part's cells where this grid
+  /// is one part of a larger one (solver/parallel/slab_halo.hpp; stable_dt() then stays local:
+  /// the caller reduces it over the parts). `filler` must outlive its use; set it before
+  /// initialize().
+  void set_ghost_filler(GridSide side, GhostFiller* filler);
+  /// How failed checks are reported (FaultReporting); set it before initialize().
+  void set_fault_reporting(FaultReporting reporting);
 
   void initialize(const InitialCondition& ic);
   double stable_dt() const;
@@ -84,7 +98,7 @@ class GasSolver {
   /// Sound speed at cell (i, j) of the current state (for Mach number output).
   double sound_speed(int i, int j) const;
 
-  /// Conservative state access (variable k = 0..3 for a rho, a rho u, a rho v, a E) for
+  /// Conservative state access (k a Conserved component: a rho, a rho u, a rho v, a E) for
   /// checkpoints and tests. After writing, call refresh_primitives().
   Field2D& conserved(int k);
   const Field2D& conserved(int k) const;
@@ -108,7 +122,8 @@ class GasSolver {
   /// of eqs. 2-3); zero by default, held constant over one step(). k as in conserved().
   Field2D& source(int k);
 
-  /// Checkpoint restore only: primitive field k = 0..4 (rho, u, v, p, T), ghosts included.
+  /// Checkpoint restore only: primitive field k (a Primitive component: rho, u, v, p, T),
+  /// ghosts included.
   /// The thermally perfect inversion e -> T starts its Newton iteration from the stored T,
   /// so recomputing the primitives from conserved(k) would change their last bits; a bitwise
   /// continuation writes them back as saved (with conserved, porosity and source) and does

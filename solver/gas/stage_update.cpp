@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "solver/gas/gas_components.hpp"
 #include "solver/gas/thermo.hpp"
 
 namespace dustlift {
@@ -14,16 +15,16 @@ namespace {
 /// well-balanced pressure parts for the momenta), U <- U0 + c (U - U0 + dt rhs), and
 /// changed[i] = 1 where U changed. One pass, so the rhs is never stored.
 template <int PressureAxis>
-[[gnu::noinline]] void variable_pass(const double* __restrict fx, const double* __restrict fy_below,
-                                     const double* __restrict fy_above, const double* __restrict source,
-                                     const double* __restrict inv_dx, double inv_dy,
-                                     const double* __restrict p_face_lo, const double* __restrict p_face_hi,
-                                     const double* __restrict a_lo, const double* __restrict a,
-                                     const double* __restrict a_hi, const double* __restrict p,
-                                     const double* __restrict u0, double* __restrict u, double* __restrict changed,
-                                     double dt, double c, int n) {
+[[gnu::noinline]] void variable_pass(
+    const double* __restrict fx, const double* __restrict fy_below,
+    const double* __restrict fy_above, const double* __restrict source,
+    const double* __restrict inv_dx, double inv_dy, const double* __restrict p_face_lo,
+    const double* __restrict p_face_hi, const double* __restrict a_lo, const double* __restrict a,
+    const double* __restrict a_hi, const double* __restrict p, const double* __restrict u0,
+    double* __restrict u, double* __restrict changed, double dt, double c, int n) {
   for (int i = 0; i < n; ++i) {
-    double rhs = -(fx[i + 1] - fx[i]) * inv_dx[i] - (fy_above[i] - fy_below[i]) * inv_dy + source[i];
+    double rhs =
+        -(fx[i + 1] - fx[i]) * inv_dx[i] - (fy_above[i] - fy_below[i]) * inv_dy + source[i];
     if constexpr (PressureAxis != 0) {
       // a grad p in well-balanced form: with p~ = p_i at both faces exactly zero whatever
       // the face porosities. The faces are the row's x-faces (i, i+1) or the y-faces below
@@ -39,24 +40,27 @@ template <int PressureAxis>
 }
 
 /// External sources plus the body force of gravity g on the stage state U = (a rho, a rho u,
-/// a rho v, a E): out[1] = S_1 + U_0 g_x, out[2] = S_2 + U_0 g_y, out[3] = S_3 + U_1 g_x + U_2 g_y.
-[[gnu::noinline]] void body_force_pass(const double* const* source, double* const* U, double gx, double gy,
-                                       double* const* out, int n) {
-  const double* __restrict m = U[0];
-  const double* __restrict mx = U[1];
-  const double* __restrict my = U[2];
+/// a rho v, a E): the momenta's a rho g and the energy's a rho g.u, added to their sources in
+/// `out` (the mass has no such term).
+[[gnu::noinline]] void body_force_pass(const double* const* source, double* const* U, double gx,
+                                       double gy, double* const* out, int n) {
+  constexpr int kMX = Conserved::kMomentumX, kMY = Conserved::kMomentumY, kE = Conserved::kEnergy;
+  const double* __restrict m = U[Conserved::kMass];
+  const double* __restrict mx = U[kMX];
+  const double* __restrict my = U[kMY];
   for (int i = 0; i < n; ++i) {
-    out[1][i] = source[1][i] + m[i] * gx;
-    out[2][i] = source[2][i] + m[i] * gy;
-    out[3][i] = source[3][i] + mx[i] * gx + my[i] * gy;
+    out[kMX][i] = source[kMX][i] + m[i] * gx;
+    out[kMY][i] = source[kMY][i] + m[i] * gy;
+    out[kE][i] = source[kE][i] + mx[i] * gx + my[i] * gy;
   }
 }
 
 /// rho, u, v and the specific internal energy of the new state.
 [[gnu::noinline]] void decode_pass(const double* __restrict m, const double* __restrict mx,
                                    const double* __restrict my, const double* __restrict en,
-                                   const double* __restrict a, double* __restrict rho, double* __restrict u,
-                                   double* __restrict v, double* __restrict e, int n) {
+                                   const double* __restrict a, double* __restrict rho,
+                                   double* __restrict u, double* __restrict v, double* __restrict e,
+                                   int n) {
   for (int i = 0; i < n; ++i) {
     const double uu = mx[i] / m[i], vv = my[i] / m[i];
     rho[i] = m[i] / a[i];
@@ -67,12 +71,14 @@ template <int PressureAxis>
 }
 
 /// Writes the new primitives where the state changed; returns the first faulty cell or -1.
-[[gnu::noinline]] int commit_pass(const double* __restrict changed, const double* __restrict new_rho,
-                                  const double* __restrict new_u, const double* __restrict new_v,
-                                  const double* __restrict new_T, double R, const double* __restrict m,
-                                  const double* __restrict mx, const double* __restrict my,
-                                  const double* __restrict en, double* __restrict rho, double* __restrict u,
-                                  double* __restrict v, double* __restrict p, double* __restrict T, int n) {
+[[gnu::noinline]] int commit_pass(const double* __restrict changed,
+                                  const double* __restrict new_rho, const double* __restrict new_u,
+                                  const double* __restrict new_v, const double* __restrict new_T,
+                                  double R, const double* __restrict m, const double* __restrict mx,
+                                  const double* __restrict my, const double* __restrict en,
+                                  double* __restrict rho, double* __restrict u,
+                                  double* __restrict v, double* __restrict p, double* __restrict T,
+                                  int n) {
   int bad_count = 0;
   for (int i = 0; i < n; ++i) {
     const bool c = changed[i] != 0.0;
@@ -100,50 +106,56 @@ template <int PressureAxis>
 }  // namespace
 
 template <class Thermo>
-int stage_update_row(const Thermo& th, const StageRow& r, const StageScratch& s, double dt, double c_new) {
+int stage_update_row(const Thermo& th, const StageRow& r, const StageScratch& s, double dt,
+                     double c_new) {
   const int n = r.n;
   if (n <= 0) return -1;
   for (int i = 0; i < n; ++i) s.changed[i] = 0.0;
   const double* const none = nullptr;
-  const double* source[4] = {r.source[0], r.source[1], r.source[2], r.source[3]};
+  constexpr int kM = Conserved::kMass, kMX = Conserved::kMomentumX, kMY = Conserved::kMomentumY,
+                kE = Conserved::kEnergy;
+  const double* source[Conserved::kCount] = {r.source[kM], r.source[kMX], r.source[kMY],
+                                             r.source[kE]};
   if (r.gravity_x != 0.0 || r.gravity_y != 0.0) {
     // Gravity: a rho g in the momenta, a rho g.u in the energy, from this stage's input
     // state (read before the passes below overwrite it).
     body_force_pass(r.source, r.U, r.gravity_x, r.gravity_y, s.rhs, n);
-    for (int k = 1; k < 4; ++k) source[k] = s.rhs[k];
+    for (int k : {kMX, kMY, kE}) source[k] = s.rhs[k];
   }
-  variable_pass<0>(r.fx[0], r.fy_below[0], r.fy_above[0], source[0], r.inv_dx, r.inv_dy, none, none, none, none,
-                   none, none, r.U0[0], r.U[0], s.changed, dt, c_new, n);
-  variable_pass<1>(r.fx[1], r.fy_below[1], r.fy_above[1], source[1], r.inv_dx, r.inv_dy, r.fx_pressure,
-                   r.fx_pressure + 1, r.alpha - 1, r.alpha, r.alpha + 1, r.p, r.U0[1], r.U[1], s.changed, dt, c_new,
-                   n);
-  variable_pass<2>(r.fx[2], r.fy_below[2], r.fy_above[2], source[2], r.inv_dx, r.inv_dy, r.fy_pressure_below,
-                   r.fy_pressure_above, r.alpha_below, r.alpha, r.alpha_above, r.p, r.U0[2], r.U[2], s.changed, dt,
-                   c_new, n);
-  variable_pass<0>(r.fx[3], r.fy_below[3], r.fy_above[3], source[3], r.inv_dx, r.inv_dy, none, none, none, none,
-                   none, none, r.U0[3], r.U[3], s.changed, dt, c_new, n);
-  decode_pass(r.U[0], r.U[1], r.U[2], r.U[3], r.alpha, s.rho, s.u, s.v, s.e, n);
+  variable_pass<0>(r.fx[kM], r.fy_below[kM], r.fy_above[kM], source[kM], r.inv_dx, r.inv_dy, none,
+                   none, none, none, none, none, r.U0[kM], r.U[kM], s.changed, dt, c_new, n);
+  variable_pass<1>(r.fx[kMX], r.fy_below[kMX], r.fy_above[kMX], source[kMX], r.inv_dx, r.inv_dy,
+                   r.fx_pressure, r.fx_pressure + 1, r.alpha - 1, r.alpha, r.alpha + 1, r.p,
+                   r.U0[kMX], r.U[kMX], s.changed, dt, c_new, n);
+  variable_pass<2>(r.fx[kMY], r.fy_below[kMY], r.fy_above[kMY], source[kMY], r.inv_dx, r.inv_dy,
+                   r.fy_pressure_below, r.fy_pressure_above, r.alpha_below, r.alpha, r.alpha_above,
+                   r.p, r.U0[kMY], r.U[kMY], s.changed, dt, c_new, n);
+  variable_pass<0>(r.fx[kE], r.fy_below[kE], r.fy_above[kE], source[kE], r.inv_dx, r.inv_dy, none,
+                   none, none, none, none, none, r.U0[kE], r.U[kE], s.changed, dt, c_new, n);
+  decode_pass(r.U[kM], r.U[kMX], r.U[kMY], r.U[kE], r.alpha, s.rho, s.u, s.v, s.e, n);
   th.temperatures(s.e, r.T, s.T, n);
-  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[0], r.U[1], r.U[2], r.U[3], r.rho, r.u,
-                     r.v, r.p, r.T, n);
+  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[kM], r.U[kMX], r.U[kMY],
+                     r.U[kE], r.rho, r.u, r.v, r.p, r.T, n);
 }
 
 template <class Thermo>
 int primitives_row(const Thermo& th, const PrimitiveRow& r, const StageScratch& s) {
   const int n = r.n;
   if (n <= 0) return -1;
-  decode_pass(r.U[0], r.U[1], r.U[2], r.U[3], r.alpha, s.rho, s.u, s.v, s.e, n);
+  constexpr int kM = Conserved::kMass, kMX = Conserved::kMomentumX, kMY = Conserved::kMomentumY,
+                kE = Conserved::kEnergy;
+  decode_pass(r.U[kM], r.U[kMX], r.U[kMY], r.U[kE], r.alpha, s.rho, s.u, s.v, s.e, n);
   th.temperatures(s.e, r.T, s.T, n);
-  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[0], r.U[1], r.U[2], r.U[3], r.rho, r.u,
-                     r.v, r.p, r.T, n);
+  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[kM], r.U[kMX], r.U[kMY],
+                     r.U[kE], r.rho, r.u, r.v, r.p, r.T, n);
 }
 
 template int stage_update_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const StageRow&,
                                                      const StageScratch&, double, double);
-template int stage_update_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const StageRow&, const StageScratch&,
-                                                   double, double);
-template int primitives_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const PrimitiveRow&,
-                                                   const StageScratch&);
+template int stage_update_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const StageRow&,
+                                                   const StageScratch&, double, double);
+template int primitives_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&,
+                                                   const PrimitiveRow&, const StageScratch&);
 template int primitives_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const PrimitiveRow&,
                                                  const StageScratch&);
 

@@ -11,6 +11,8 @@
 // change keeps its primitives (the T(e) Newton solve is not a fixed point to the last bit).
 #include <cstddef>
 
+#include "solver/gas/gas_components.hpp"
+
 namespace dustlift {
 
 class CaloricallyPerfectGas;
@@ -18,15 +20,16 @@ class ThermallyPerfectAir;
 
 /// Pointers into the solver's arrays at the first cell of the segment (cell index i0):
 /// every per-cell pointer may be indexed [0, n), the x-face arrays [0, n] (face k lies on the
-/// left of cell k), the y-face arrays [0, n) for the faces below and above the row.
+/// left of cell k), the y-face arrays [0, n) for the faces below and above the row. Arrays of
+/// pointers are indexed by Conserved component.
 struct StageRow {
-  const double* U0[4];        ///< conserved state at the start of the step
-  double* U[4];               ///< conserved state of this stage (read, then overwritten)
-  const double* source[4];    ///< external sources (coupling), per m^3
-  const double* fx[4];        ///< porosity-weighted convective x-face fluxes
-  const double* fx_pressure;  ///< x-face pressure p~ (unweighted)
-  const double* fy_below[4];  ///< y-faces below the row
-  const double* fy_above[4];  ///< y-faces above the row
+  const double* U0[Conserved::kCount];  ///< conserved state at the start of the step
+  double* U[Conserved::kCount];         ///< conserved state of this stage (read, then overwritten)
+  const double* source[Conserved::kCount];    ///< external sources (coupling), per m^3
+  const double* fx[Conserved::kCount];        ///< porosity-weighted convective x-face fluxes
+  const double* fx_pressure;                  ///< x-face pressure p~ (unweighted)
+  const double* fy_below[Conserved::kCount];  ///< y-faces below the row
+  const double* fy_above[Conserved::kCount];  ///< y-faces above the row
   const double* fy_pressure_below;
   const double* fy_pressure_above;
   const double* alpha;        ///< porosity of the row; alpha[-1] and alpha[n] are read too
@@ -35,7 +38,7 @@ struct StageRow {
   const double* inv_dx;       ///< 1 / cell width per cell
   double inv_dy;              ///< 1 / cell height of the row
   double gas_constant;
-  double gravity_x = 0.0;     ///< m/s^2, body force on the gas (GasConfig::gravity_x)
+  double gravity_x = 0.0;  ///< m/s^2, body force on the gas (GasConfig::gravity_x)
   double gravity_y = 0.0;
   // Primitives of the row: read (p for the pressure term, T as the Newton guess) and
   // overwritten with those of the new state where it changed.
@@ -49,7 +52,7 @@ struct StageRow {
 
 /// Per-thread scratch of at least n doubles per array.
 struct StageScratch {
-  double* rhs[4];
+  double* rhs[Conserved::kCount];
   double* rho;
   double* u;
   double* v;
@@ -61,18 +64,21 @@ struct StageScratch {
 /// Applies the stage to the row segment. Returns the index (0-based within the segment) of
 /// the first cell whose new state is not finite or has rho <= 0 or p <= 0, or -1.
 template <class Thermo>
-int stage_update_row(const Thermo& thermo, const StageRow& row, const StageScratch& scratch, double dt, double c_new);
+int stage_update_row(const Thermo& thermo, const StageRow& row, const StageScratch& scratch,
+                     double dt, double c_new);
 
-extern template int stage_update_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const StageRow&,
-                                                            const StageScratch&, double, double);
-extern template int stage_update_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const StageRow&,
-                                                          const StageScratch&, double, double);
+extern template int stage_update_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&,
+                                                            const StageRow&, const StageScratch&,
+                                                            double, double);
+extern template int stage_update_row<ThermallyPerfectAir>(const ThermallyPerfectAir&,
+                                                          const StageRow&, const StageScratch&,
+                                                          double, double);
 
 /// Primitives of a row segment from its conserved state (a rho, a rho u, a rho v, a E) and
 /// porosity a, T(e) warm-started at the current T; cells flagged unchanged[i] != 0 keep theirs.
 /// Returns the first faulty cell (as stage_update_row) or -1.
 struct PrimitiveRow {
-  const double* U[4];
+  const double* U[Conserved::kCount];
   const double* alpha;
   double gas_constant;
   double* rho;
@@ -85,9 +91,9 @@ struct PrimitiveRow {
 template <class Thermo>
 int primitives_row(const Thermo& thermo, const PrimitiveRow& row, const StageScratch& scratch);
 
-extern template int primitives_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const PrimitiveRow&,
-                                                          const StageScratch&);
-extern template int primitives_row<ThermallyPerfectAir>(const ThermallyPerfectAir&, const PrimitiveRow&,
-                                                        const StageScratch&);
+extern template int primitives_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&,
+                                                          const PrimitiveRow&, const StageScratch&);
+extern template int primitives_row<ThermallyPerfectAir>(const ThermallyPerfectAir&,
+                                                        const PrimitiveRow&, const StageScratch&);
 
 }  // namespace dustlift

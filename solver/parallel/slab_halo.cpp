@@ -2,15 +2,65 @@
 
 #include <chrono>
 
+#include "solver/gas/gas_solver.hpp"
+
 namespace dustlift {
 
 SlabHalo::SlabHalo(const Communicator& comm, SlabLayout layout, const Grid2D& slab_grid)
     : comm_(comm),
       layout_(std::move(layout)),
       nx_(slab_grid.nx()),
+      ny_(slab_grid.ny()),
       rows_(slab_grid.ny() + 2 * slab_grid.ghosts()),
       ng_(slab_grid.ghosts()),
-      stride_(slab_grid.stride()) {}
+      stride_(slab_grid.stride()),
+      edge_updates_(slab_grid, 0.0) {}
+
+void SlabHalo::attach(GasSolver& gas) {
+  gas.set_ghost_filler(GridSide::Left, owns_left_boundary() ? nullptr : this);
+  gas.set_ghost_filler(GridSide::Right, owns_right_boundary() ? nullptr : this);
+  const Communicator& comm = comm_;
+  gas.set_fault_reporting({layout_.first_column(), [&comm](const std::string& local) {
+                             return comm.first_nonempty(local);
+                           }});
+}
+
+void SlabHalo::fill(const PrimitiveGhosts& ghosts) {
+  const auto& f = ghosts.fields;
+  Field2D* const fields[] = {f[Primitive::kDensity],     f[Primitive::kVelocityX],
+                             f[Primitive::kVelocityY],   f[Primitive::kPressure],
+                             f[Primitive::kTemperature], &edge_updates_};
+  // The updates ride along only where the solver skips resting cells (and so asks).
+  const bool updates = ghosts.updated_lo != nullptr;
+  if (updates) mark_edge_updates(ghosts.updated_lo, ghosts.updated_hi);
+  exchange_columns(std::span<Field2D* const>(fields).first(updates ? 6 : 5));
+}
+
+void SlabHalo::fill_porosity(Field2D& alpha) {
+  Field2D* const fields[] = {&alpha};
+  exchange_columns(fields);
+}
+
+void SlabHalo::mark_edge_updates(const int* lo, const int* hi) {
+  for (int j = 0; j < ny_; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const bool active = lo[k] < hi[k];
+    const double left = active && lo[k] < ng_ ? 1.0 : 0.0;
+    const double right = active && hi[k] > nx_ - ng_ ? 1.0 : 0.0;
+    for (int g = 0; g < ng_; ++g) {
+      edge_updates_(g, j) = left;
+      edge_updates_(nx_ - 1 - g, j) = right;
+    }
+  }
+}
+
+bool SlabHalo::changed_beyond(GridSide side, int j0, int j1) const {
+  if (!is_x_side(side)) return false;
+  const int ghost_column = side == GridSide::Left ? -1 : nx_;
+  bool changed = false;
+  for (int r = j0; r < j1; ++r) changed = changed || edge_updates_(ghost_column, r) != 0.0;
+  return changed;
+}
 
 void SlabHalo::exchange_columns(std::span<Field2D* const> fields) {
   const auto start = std::chrono::steady_clock::now();

@@ -123,7 +123,7 @@ void SlabDriver::build_slab_gas() {
   sim_.grid_ = sim_.whole_grid_.slice_x(layout_.first_column(), layout_.end_column());
   sim_.gas_ = std::make_unique<GasSolver>(sim_.grid_, sim_.gas_config_);
   halo_ = std::make_unique<SlabHalo>(*comm_, layout_, sim_.grid_);
-  sim_.gas_->set_halo(halo_.get());
+  halo_->attach(*sim_.gas_);
 }
 
 bool SlabDriver::rebalance() {
@@ -309,7 +309,7 @@ void SlabDriver::gather(bool with_sources, unsigned reads) const {
   const bool all_gas = (reads & Observer::kReadsGas) != 0;
   const bool alpha =
       sim_.coupling_ && (reads & (Observer::kReadsGas | Observer::kReadsAlphaP)) != 0;
-  constexpr int kPressure = 3;  // primitive_field: rho, u, v, p, T
+  constexpr int kPressure = Primitive::kPressure;
   std::vector<Field2D*> fields;
   if (all_gas) {
     fields = gas_state_fields(*sim_.gas_, with_sources);

@@ -1,5 +1,6 @@
-// The gas on x-slabs over MPI ranks (issue 12), run by ctest as `mpirun -np 2`: every rank
-// runs every test, rank 0 also runs the same scene on one rank and compares bit for bit.
+// The gas on x-slabs over MPI ranks (docs/parallel.md), run by ctest as `mpirun -np 2`:
+// every rank runs every test, rank 0 also runs the same scene on one rank and compares bit
+// for bit.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -32,7 +33,7 @@ const std::vector<std::string> kShortChannel = {"grid.x.start=-0.020",      "gri
 // the cut from rank 1's side while rank 0's edge cells still rest (skipped). A change moves
 // one cell per stage, so whether it reaches a neighbour's stencil within a step depends on
 // the jump's distance from the cut modulo three cells: at 5 cells (52.5 mm) it does, and
-// without the exchanged edge activity (gas_solver.cpp) eight of the arrays differ; at 4 or
+// without the exchanged edge updates (SlabHalo::fill) eight of the arrays differ; at 4 or
 // 6 cells nothing would. The shock then crosses the periodic join into rank 0. Calorically
 // perfect, viscous.
 const char* kPeriodic = R"(

@@ -1,12 +1,13 @@
 // GasSolver mechanics: eq. (17) time step (convective and viscous limits), ghost cells of each
-// boundary kind, inflow state recorded from the initial condition, porosity in the conserved
-// variables, and the NumericalFailure message naming the cell and variable.
+// boundary kind, a ghost filler set in place of a boundary condition, inflow state recorded
+// from the initial condition, porosity in the conserved variables, and the NumericalFailure
+// message naming the cell and variable.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "solver/core/errors.hpp"
 #include "solver/gas/gas_solver.hpp"
@@ -52,7 +53,8 @@ TEST(GasSolverDt, ConvectiveLimitIsTwoDimensionalCfl) {
   double max_rate = 0.0;
   for (int j = 0; j < grid.ny(); ++j)
     for (int i = 0; i < grid.nx(); ++i)
-      max_rate = std::max(max_rate, (100.0 + c) / grid.x().width(i) + (30.0 + c) / grid.y().width(j));
+      max_rate =
+          std::max(max_rate, (100.0 + c) / grid.x().width(i) + (30.0 + c) / grid.y().width(j));
   EXPECT_NEAR(gas.stable_dt(), 0.4 / max_rate, 1e-12 * 0.4 / max_rate);
   EXPECT_NEAR(gas.sound_speed(3, 2), c, 1e-9 * c);
 }
@@ -105,7 +107,7 @@ TEST(GasSolverBoundaries, GhostCellsOfEachKind) {
     for (int g = 0; g < 2; ++g) {
       EXPECT_EQ((*s.u)(i, -1 - g), -(*s.u)(i, g));  // no-slip: both components mirrored
       EXPECT_EQ((*s.v)(i, -1 - g), -(*s.v)(i, g));
-      EXPECT_EQ((*s.T)(i, -1 - g), (*s.T)(i, g));  // adiabatic
+      EXPECT_EQ((*s.T)(i, -1 - g), (*s.T)(i, g));            // adiabatic
       EXPECT_EQ((*s.v)(i, ny + g), -(*s.v)(i, ny - 1 - g));  // slip top
       EXPECT_EQ((*s.u)(i, ny + g), (*s.u)(i, ny - 1 - g));
     }
@@ -115,7 +117,8 @@ TEST(GasSolverBoundaries, GhostCellsOfEachKind) {
 TEST(GasSolverBoundaries, PeriodicGhostsWrap) {
   const Grid2D grid = stretched_grid();
   GasConfig cfg = air_config();
-  cfg.boundary.left = cfg.boundary.right = cfg.boundary.bottom = cfg.boundary.top = BoundaryKind::Periodic;
+  cfg.boundary.left = cfg.boundary.right = cfg.boundary.bottom = cfg.boundary.top =
+      BoundaryKind::Periodic;
   GasSolver gas(grid, cfg);
   InitialCondition ic;
   ic.kind = InitialCondition::Kind::Riemann;
@@ -155,6 +158,80 @@ TEST(GasSolverBoundaries, InflowKeepsThePostShockStateFromTheInitialCondition) {
   }
 }
 
+/// Another part of the grid beyond the right side, at rest at a fixed state: what a
+/// neighbouring rank's filler does, without the rank.
+class FixedStateBeyond final : public GhostFiller {
+ public:
+  FixedStateBeyond(const Grid2D& grid, PrimitiveState s) : grid_(grid), s_(s) {}
+  bool collective() const override { return true; }
+  void fill(const PrimitiveGhosts& g) override {
+    const double values[Primitive::kCount] = {s_.rho, s_.u, s_.v, s_.p, s_.T};
+    for (int k = 0; k < Primitive::kCount; ++k) fill_columns(*g.fields[k], values[k]);
+    ++fills;
+  }
+  void fill_porosity(Field2D& alpha) override { fill_columns(alpha, 1.0); }
+  int fills = 0;
+
+ private:
+  void fill_columns(Field2D& f, double value) const {
+    const int ng = grid_.ghosts();
+    for (int j = -ng; j < grid_.ny() + ng; ++j)
+      for (int g = 0; g < ng; ++g) f(grid_.nx() + g, j) = value;
+  }
+  Grid2D grid_;
+  PrimitiveState s_;
+};
+
+TEST(GasSolverBoundaries, AFillerSetInPlaceOfASideFillsItsGhostsCornersIncluded) {
+  const Grid2D grid = stretched_grid();
+  GasSolver gas(grid, air_config());
+  FixedStateBeyond beyond(grid, {2.0, 0.0, 0.0, 2.0e5, 350.0});
+  EXPECT_THROW(gas.set_ghost_filler(GridSide::Top, &beyond), std::invalid_argument);
+  gas.set_ghost_filler(GridSide::Right, &beyond);
+  InitialCondition ic;
+  ic.state = {1.2, 0.0, 0.0, 1.0e5};
+  gas.initialize(ic);
+  const GasPrimitives s = gas.primitives();
+  const int nx = grid.nx(), ny = grid.ny();
+  for (int j = -2; j < ny + 2; ++j) {
+    EXPECT_EQ((*s.p)(nx, j), 2.0e5) << j;
+    EXPECT_EQ((*s.T)(nx + 1, j), 350.0) << j;
+    EXPECT_EQ((*s.p)(-1, j), 1.0e5) << j;  // the left side keeps its boundary condition
+  }
+  const int before = beyond.fills;
+  gas.step(gas.stable_dt());
+  EXPECT_EQ(beyond.fills - before, 4);             // before each stage, and the final fill
+  EXPECT_GT((*s.p)(nx - 1, 2), 1.0e5);             // the higher pressure beyond pushes in
+  gas.set_ghost_filler(GridSide::Right, nullptr);  // the boundary condition again (outflow)
+  gas.refresh_primitives();
+  EXPECT_EQ((*s.p)(nx, 2), (*s.p)(nx - 1, 2));
+}
+
+TEST(GasSolverFailure, APartOfALargerGridNamesWholeGridColumnsAndAgreesOnTheMessage) {
+  const Grid2D grid = stretched_grid();
+  GasConfig cfg = air_config();
+  cfg.thermo.model = ThermoModel::CaloricallyPerfect;
+  GasSolver gas(grid, cfg);
+  int checks = 0;
+  gas.set_fault_reporting({100, [&checks](const std::string& local) {
+                             ++checks;
+                             return local;
+                           }});
+  InitialCondition ic;
+  ic.state = {1.2, 0.0, 0.0, 1.0e5};
+  gas.initialize(ic);
+  gas.step(gas.stable_dt());
+  EXPECT_EQ(checks, 4);  // the state written from outside, then each stage
+  gas.conserved(Conserved::kEnergy)(7, 4) = -1.0e6;
+  gas.refresh_primitives();
+  try {
+    gas.step(gas.stable_dt());
+    FAIL() << "expected NumericalFailure";
+  } catch (const NumericalFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("(i, j) = (107, 4)"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GasSolverInitial, ShockAlongYPutsThePostShockStateBelow) {
   const Grid2D grid = stretched_grid();
   GasConfig cfg = air_config();
@@ -164,7 +241,8 @@ TEST(GasSolverInitial, ShockAlongYPutsThePostShockStateBelow) {
   ic.axis = 'y';
   ic.state = {1.17, 0.0, 0.0, 1.01e5};
   ic.mach = 2.0;
-  ic.position = 0.005;  // cell centres at 1, 3, 5, ... mm: j <= 1 post-shock, j >= 2 (centre not < 5 mm) pre-shock
+  ic.position = 0.005;  // cell centres at 1, 3, 5, ... mm: j <= 1 post-shock, j >= 2 (centre not <
+                        // 5 mm) pre-shock
   gas.initialize(ic);
   const ShockJump jump = normal_shock(ic.state, ic.mach, cfg.thermo, 'y');
   const GasPrimitives s = gas.primitives();
@@ -187,7 +265,8 @@ TEST(GasSolverBoundaries, GivenInflowStateIsImposed) {
   gas.initialize(ic);
   EXPECT_EQ((*gas.primitives().rho)(-1, 3), 1.5);
   EXPECT_EQ((*gas.primitives().u)(-2, 3), 50.0);
-  EXPECT_NEAR((*gas.primitives().p)(0, 3), 1.0e5, 1e-6);  // interior: untouched up to the T(e) solve
+  EXPECT_NEAR((*gas.primitives().p)(0, 3), 1.0e5,
+              1e-6);  // interior: untouched up to the T(e) solve
 }
 
 TEST(GasSolverPorosity, ConservedVariablesCarryPorosity) {
@@ -210,7 +289,8 @@ TEST(GasSolverPorosity, PressureSourceBalancesTheFluxOverAPorosityJump) {
   const Grid2D grid = stretched_grid();
   GasSolver gas(grid, air_config());
   for (int j = 0; j < grid.ny(); ++j)
-    for (int i = 0; i < grid.nx(); ++i) gas.porosity()(i, j) = (i + 2 * j) % 5 == 0 ? 0.41 : 0.9 - 0.02 * i;
+    for (int i = 0; i < grid.nx(); ++i)
+      gas.porosity()(i, j) = (i + 2 * j) % 5 == 0 ? 0.41 : 0.9 - 0.02 * i;
   InitialCondition ic;
   ic.state = {1.17, 0.0, 0.0, 1.01e5};
   gas.initialize(ic);

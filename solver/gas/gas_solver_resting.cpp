@@ -1,0 +1,137 @@
+// GasSolver's skipping of resting cells (rest_ranges.hpp): the cells each stage updates,
+// and the resting gas the coupling asks for.
+#include "solver/gas/gas_solver_impl.hpp"
+
+namespace dustlift {
+
+/// Per row (ghost rows included) the cells at each end that rest at that end's reference
+/// state; then per interior row the cells a stage must update (rest_ranges.hpp). Runs inside
+/// the stage's parallel region after the ghosts were filled.
+void GasSolver::Impl::compute_active_ranges() {
+  if (!skip_resting) return;
+#pragma omp single
+  {
+    left_reference = rest_reference_of(at(0, ny - 1));
+    right_reference = rest_reference_of(at(nx - 1, ny - 1));
+  }
+  const int cells = nx + 2 * ng;
+#pragma omp for schedule(static)
+  for (int jr = -ng; jr < ny + ng; ++jr) {
+    const std::size_t c = at(-ng, jr);
+    const RowView row{u.data() + c, v.data() + c, p.data() + c, T.data() + c, cells};
+    const auto k = static_cast<std::size_t>(jr + ng);
+    rest_to[k] = resting_prefix(row, left_reference) - 1 - ng;
+    rest_from[k] = cells - resting_suffix(row, right_reference) - ng;
+  }
+#pragma omp for schedule(static)
+  for (int j = 0; j < ny; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const ActiveRange r =
+        active_range(rest_to.data() + j, rest_from.data() + j, 2 * ng + 1, source_rows[k], nx);
+    row_lo[k] = r.lo;
+    row_hi[k] = r.hi;
+  }
+}
+
+/// Where each row has sources this step (they are held constant over the step).
+void GasSolver::Impl::find_source_rows() {
+  if (!skip_resting) return;
+#pragma omp parallel for if (threaded) schedule(static)
+  for (int j = 0; j < ny; ++j) {
+    const std::size_t c = at(0, j);
+    const double* const rows[Conserved::kCount] = {
+        source[Conserved::kMass].data() + c, source[Conserved::kMomentumX].data() + c,
+        source[Conserved::kMomentumY].data() + c, source[Conserved::kEnergy].data() + c};
+    source_rows[static_cast<std::size_t>(j)] = source_extent(rows, nx);
+  }
+}
+
+/// Ranges of the next stage from this step's first: a stage changes only cells in its
+/// ranges, so a cell further than the stencil reach (2 cells, 2 rows) from all of them
+/// still has the resting stencil it had (exact; cheaper than scanning again).
+void GasSolver::Impl::widen_active_ranges() {
+  if (!skip_resting) return;
+#pragma omp single
+  {
+    widened_lo_ = row_lo;
+    widened_hi_ = row_hi;
+    for (int j = 0; j < ny; ++j) {
+      int lo = nx, hi = 0;
+      for (int r = std::max(j - ng, 0); r <= std::min(j + ng, ny - 1); ++r) {
+        const auto k = static_cast<std::size_t>(r);
+        if (widened_lo_[k] >= widened_hi_[k]) continue;
+        lo = std::min(lo, widened_lo_[k] - ng);
+        hi = std::max(hi, widened_hi_[k] + ng);
+      }
+      // The edge cells read ghosts copied from another process's cells: where its previous
+      // stage updated those (within the stencil's rows), they are updated too.
+      if (has_collective_fillers()) {
+        const int r0 = std::max(j - ng, 0), r1 = std::min(j + ng, ny - 1) + 1;
+        const auto changed = [&](GridSide side) {
+          const std::size_t k = side_index(side);
+          return !local[k] && filler[k]->changed_beyond(side, r0, r1);
+        };
+        const bool left = changed(GridSide::Left), right = changed(GridSide::Right);
+        if (left) {
+          lo = std::min(lo, 0);
+          hi = std::max(hi, std::min(ng, nx));
+        }
+        if (right) {
+          lo = std::min(lo, std::max(nx - ng, 0));
+          hi = std::max(hi, nx);
+        }
+      }
+      lo = std::max(lo, 0);
+      hi = std::min(hi, nx);
+      row_lo[static_cast<std::size_t>(j)] = lo < hi ? lo : 0;
+      row_hi[static_cast<std::size_t>(j)] = lo < hi ? hi : 0;
+    }
+  }
+}
+
+RestReference GasSolver::Impl::rest_reference_of(std::size_t c) const {
+  return dustlift::rest_reference(u.data()[c], v.data()[c], p.data()[c], T.data()[c], rho.data()[c],
+                                  config.rest_tolerance);
+}
+
+void GasSolver::add_column_work(std::vector<double>& per_column) const {
+  const Impl& m = *impl_;
+  if (per_column.size() != static_cast<std::size_t>(m.nx))
+    throw std::invalid_argument("add_column_work: one entry per column");
+  // A difference array over each row's range [lo, hi), then its running sum.
+  std::vector<double> step(static_cast<std::size_t>(m.nx) + 1, 0.0);
+  for (int j = 0; j < m.ny; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    if (m.row_lo[k] >= m.row_hi[k]) continue;
+    step[static_cast<std::size_t>(m.row_lo[k])] += 1.0;
+    step[static_cast<std::size_t>(m.row_hi[k])] -= 1.0;
+  }
+  double running = 0.0;
+  for (int i = 0; i < m.nx; ++i) {
+    running += step[static_cast<std::size_t>(i)];
+    per_column[static_cast<std::size_t>(i)] += running;
+  }
+}
+
+RestReference GasSolver::rest_reference() const {
+  const Impl& m = *impl_;
+  RestReference ref = m.rest_reference_of(m.at(m.nx - 1, m.ny - 1));
+  // Under gravity no gas rests: the body force changes every cell's momentum.
+  ref.valid = ref.valid && !m.config.has_gravity();
+  return ref;
+}
+
+void GasSolver::resting_gas(RestingGas& out, const RestReference& ref) const {
+  const Impl& m = *impl_;
+  out.reference = ref;
+  out.first_resting.resize(static_cast<std::size_t>(m.ny));
+  const int cells = m.nx + 2 * m.ng;
+#pragma omp parallel for if (m.threaded) schedule(static)
+  for (int j = 0; j < m.ny; ++j) {
+    const std::size_t c = m.at(-m.ng, j);
+    const RowView row{m.u.data() + c, m.v.data() + c, m.p.data() + c, m.T.data() + c, cells};
+    out.first_resting[static_cast<std::size_t>(j)] = cells - resting_suffix(row, ref) - m.ng;
+  }
+}
+
+}  // namespace dustlift
