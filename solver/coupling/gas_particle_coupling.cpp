@@ -20,12 +20,6 @@
 #include "solver/gas/transport.hpp"
 
 namespace dustlift {
-namespace {
-
-/// Below this many parcels a parallel region costs more than it saves.
-constexpr std::size_t kParallelParcels = 4096;
-
-}  // namespace
 
 /// cp(T), c(T) and gamma(T) of the configured thermodynamics, and the transport properties
 /// the particle models use: the gas's own (the Gordon-Wilke model through the same table as
@@ -86,7 +80,7 @@ template <class T>
 void clear_rows(const Grid2D& g, T* cells, int rows, int columns) {
   const int nx = std::min(columns, g.nx()), n_rows = std::min(rows, g.ny());
   if (nx <= 0) return;
-#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(n_rows) * nx >= kParallelParcels)
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(n_rows) * nx >= kParallelMinimum)
   for (int j = 0; j < n_rows; ++j) std::fill_n(cells + g.index(0, j), nx, T{});
 }
 
@@ -177,7 +171,7 @@ void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j
   double ymin = grid_.y().end(), ymax = grid_.y().start();
   const std::size_t n = parcels.size();
   const double* y = parcels.y.data();
-#pragma omp parallel for schedule(static) reduction(min : ymin) reduction(max : ymax) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(min : ymin) reduction(max : ymax) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     ymin = std::min(ymin, y[i]);
     ymax = std::max(ymax, y[i]);
@@ -209,7 +203,7 @@ void GasParticleCoupling::update_stencils(const ParcelSystem& parcels, std::size
   const double w = cfg_.influence_width;
   constexpr std::size_t kBlock = 1024;
   const std::size_t blocks = (end + kBlock - 1) / kBlock;
-#pragma omp parallel for schedule(static) if (end >= kParallelParcels)
+#pragma omp parallel for schedule(static) if (end >= kParallelMinimum)
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t k0 = b * kBlock;
     const std::size_t count = std::min(kBlock, end - k0);
@@ -231,7 +225,7 @@ void GasParticleCoupling::update_stencils(const ParcelSystem& parcels, std::size
 void GasParticleCoupling::plan_scatter(std::size_t count) {
   // A plan over more parcels serves too (the passes skip the columns they do not fill).
   if (planned_parcels_ >= count && planned_parcels_ > 0) return;
-  scatter_.plan(stencils_, count, grid_.nx(), kParallelParcels);
+  scatter_.plan(stencils_, count, grid_.nx(), kParallelMinimum);
   planned_parcels_ = count;
 }
 
@@ -251,7 +245,7 @@ std::size_t GasParticleCoupling::parcels_reaching(const ParcelSystem& ps, int co
   const double face = grid_.x().face(column + 1);
   const double* x = ps.x.data();
   std::size_t last = 0;
-#pragma omp parallel for schedule(static) reduction(max : last) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(max : last) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
     if (x[k] - half <= face) last = std::max(last, k + 1);
   }
@@ -273,7 +267,7 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
   if (!stencils_need_all(parcels) && stepped < parcels.size()) {
     double x_after = -std::numeric_limits<double>::infinity();
     const double* x = parcels.x.data();
-#pragma omp parallel for schedule(static) reduction(max : x_after) if (stepped >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(max : x_after) if (stepped >= kParallelMinimum)
     for (std::size_t k = 0; k < stepped; ++k) x_after = std::max(x_after, x[k]);
     reach = stepped == 0 ? 0 : deposit_column_bound(std::max(active_x_max_, x_after));
   }
@@ -368,7 +362,7 @@ void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j
   const int last_column = std::min(i1, nx - 1);  // columns up to i1 reach cells below i1
   const std::size_t width = static_cast<std::size_t>(nx) + 2;
   near_scratch_.resize(width * static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
-#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1 - j0) * i1 >= kParallelParcels)
+#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1 - j0) * i1 >= kParallelMinimum)
   for (int j = j0; j < j1; ++j) {
     // near[i + 1]: column i holds parcels in one of the rows j-1, j, j+1.
     std::uint8_t* near = near_scratch_.data() + width * static_cast<std::size_t>(omp_get_thread_num());
@@ -416,7 +410,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
     // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
     // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
     const int nx = grid_.nx();
-#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelParcels)
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
     for (int j = 0; j < grid_.ny(); ++j) {
       if (needs_vorticity()) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
       if (cfg_.pressure_force) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
@@ -452,7 +446,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   constexpr std::size_t kBatch = 64;
   const std::size_t batches = (n + kBatch - 1) / kBatch;
   const bool pressure = cfg_.pressure_force;
-#pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelMinimum)
   for (std::size_t b = 0; b < batches; ++b) {
     std::array<ModelInput, kBatch> in;
     std::array<SubstepCoefficients, kBatch> out{};
@@ -517,7 +511,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   double* exchanged[] = {ps.column(col_.impulse_x).data(), ps.column(col_.impulse_y).data(),
                          ps.column(col_.work).data(), ps.column(col_.heat).data()};
   const std::size_t all = ps.size();
-#pragma omp parallel for schedule(static) if (all >= kParallelParcels)
+#pragma omp parallel for schedule(static) if (all >= kParallelMinimum)
   for (std::size_t k = 0; k < all; ++k) {
     for (double* c : exchanged) c[k] = 0.0;
   }
@@ -558,7 +552,7 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
   const int nx = c + 1;
   // Rows one at a time: the cells holding parcels are mostly in the layer's few rows at the
   // bottom, which a static split gave to one thread. Every cell on its own.
-#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1) * nx >= kParallelParcels)
+#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1) * nx >= kParallelMinimum)
   for (int j = 0; j < j1; ++j) {
     for (int i = 0; i < nx; ++i) {
       ReliefCell& r = relief_[grid_.index(i, j)];
@@ -591,7 +585,7 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
     }
   }
   const std::size_t n = active;
-#pragma omp parallel for schedule(static) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
     if (ps.is_ghost(k)) continue;  // its owner's (a ghost's stencil may leave the slab)
     const DepositStencil& st = stencils_[k];
@@ -611,7 +605,7 @@ void GasParticleCoupling::stiff_exchange_relief(const GasSolver& gas, ParcelSyst
 void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
   const std::size_t n = ps.size();
   std::size_t first_bad = n;
-#pragma omp parallel for schedule(static) reduction(min : first_bad) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(min : first_bad) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
     if (ps.is_ghost(k)) continue;  // its owner checks it
     const bool ok = std::isfinite(ps.x[k]) && std::isfinite(ps.y[k]) && std::isfinite(ps.vx[k]) &&
@@ -669,7 +663,7 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
   Field2D& se = gas.source(3);
   // Rows [rows, cleared) held parcels before and none now: their sources go back to zero;
   // rows above them never held any. Every cell on its own: any split over threads.
-#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(cleared_to_) * nx >= kParallelParcels)
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(cleared_to_) * nx >= kParallelMinimum)
   for (int j = 0; j < cleared_to_; ++j) {
     for (int i = 0; i < nx; ++i) {
       alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);
@@ -796,7 +790,7 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
     const bool valid = ref.valid;
     const double T_ref = ref.T, dT = ref.dT, du = ref.du;
     double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelMinimum)
     for (std::size_t k = 0; k < n; ++k) {
       bool rests = valid && std::abs(ps.temperature[k] - T_ref) <= dT;
       if (rests) {
@@ -835,7 +829,7 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
       const double reach = (ps.substeps_for(dt) + 2) * d_max + 2.0 * v_max * dt + 4.0 * cell + cfg_.influence_width;
       const double cut = front + reach;
       std::size_t last = 0;
-#pragma omp parallel for schedule(static) reduction(max : last) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(max : last) if (n >= kParallelMinimum)
       for (std::size_t k = 0; k < n; ++k) {
         if (rest_steps[k] < 2.0 || ps.x[k] <= cut) last = std::max(last, k + 1);
       }
@@ -846,7 +840,7 @@ std::size_t GasParticleCoupling::plan_active_parcels(const GasSolver& gas, Parce
   double x_max = -std::numeric_limits<double>::infinity(), y_min = grid_.y().end(), y_max = grid_.y().start();
   const double* px = ps.x.data();
   const double* py = ps.y.data();
-#pragma omp parallel for schedule(static) reduction(max : x_max, y_max) reduction(min : y_min) if (n >= kParallelParcels)
+#pragma omp parallel for schedule(static) reduction(max : x_max, y_max) reduction(min : y_min) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
     active[k] = k < limit ? 1.0 : 0.0;
     if (k < limit) {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/parallel_minimum.hpp"
 #include "solver/core/phase_timer.hpp"
 #include "solver/dem/dem_config.hpp"
 
@@ -29,11 +30,6 @@ class Communicator;
 /// Wall slots of the per-parcel wall history, in this order.
 enum class Wall : int { Bottom = 0, Top = 1, Left = 2, Right = 3, Count = 4 };
 inline constexpr int kWallCount = static_cast<int>(Wall::Count);
-
-/// Below this many parcels the loops run on one thread: a parallel region costs more than
-/// the work (and on a shared machine, threads waiting for a busy core cost far more).
-/// Results do not depend on it (every parcel gathers its own sums).
-inline constexpr std::size_t kParallelMinimum = 4096;
 
 /// A column of the parcel table: its name and unit (as written to checkpoints, .vtp and
 /// Catalyst) and what it is for. Every column is permuted with the parcels by the cell sort.
