@@ -15,6 +15,10 @@ Vec2Columns force_part(bool computed, const std::vector<double>& fx,
                        const std::vector<double>& fy) {
   return computed ? Vec2Columns{present_column(fx), present_column(fy)} : Vec2Columns{};
 }
+/// The force parts the coupling's models write (none without a coupling).
+ForceParts force_parts_of(const StateView& v) {
+  return v.coupling != nullptr ? v.coupling->force_parts() : ForceParts{};
+}
 Vec2Columns both(const std::vector<double>& x, const std::vector<double>& y) {
   return {present_column(x), present_column(y)};
 }
@@ -24,7 +28,7 @@ Vec2Columns both(const std::vector<double>& x, const std::vector<double>& y) {
 /// `written` are added under their names.
 ParcelArraysView parcel_arrays_of(const StateView& v) {
   const ParcelSystem& p = *v.parcels;
-  const CouplingConfig& c = v.scene->coupling;
+  const ForceParts c = force_parts_of(v);
   ParcelArraysView a;
   a.count = p.size();
   // Every column present, also on a rank without parcels (present_column).
@@ -40,7 +44,7 @@ ParcelArraysView parcel_arrays_of(const StateView& v) {
   a.force_contact = both(p.contact_fx, p.contact_fy);
   a.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
   a.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
-  a.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
+  a.force_pressure = force_part(c.pressure, p.pressure_fx, p.pressure_fy);
   for (std::size_t k = 0; k < p.attached_count(); ++k) {
     if (p.attached_spec(k).written)
       a.extra.push_back({p.attached_spec(k).name, present_column(p.attached(k))});
@@ -55,11 +59,11 @@ BandParcelsView band_arrays_of(const StateView& v) {
   b.count = p.size();
   b.initial_position = {p.x_initial, p.y_initial};
   b.y = p.y;
-  const CouplingConfig& c = v.scene->coupling;
+  const ForceParts c = force_parts_of(v);
   b.force_contact = {p.contact_fx, p.contact_fy};
   b.force_drag = force_part(c.drag, p.drag_fx, p.drag_fy);
   b.force_magnus = force_part(c.magnus, p.magnus_fx, p.magnus_fy);
-  b.force_pressure = force_part(c.pressure_force, p.pressure_fx, p.pressure_fy);
+  b.force_pressure = force_part(c.pressure, p.pressure_fx, p.pressure_fy);
   b.particle_rotation = p.omega;
   if (v.coupling != nullptr) {
     b.relative_rotation = p.column(v.coupling->relative_rotation_column());

@@ -90,10 +90,10 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
                                          const GasConfig& gas, const DemConfig& dem)
     : grid_(grid), cfg_(config), gas_cfg_(gas), dem_cfg_(dem),
       particle_volume_(std::numbers::pi / 6.0 * std::pow(dem.particle_diameter, 3)),
-      models_(build_coupling_models(config)), props_(std::make_unique<GasProperties>(gas)), alpha_p_(grid), alpha_g_(grid, 1.0),
+      models_(config), props_(std::make_unique<GasProperties>(gas)), alpha_p_(grid), alpha_g_(grid, 1.0),
       exchange_(grid.size_with_ghosts()), relief_(grid.size_with_ghosts()) {
-  if (needs_vorticity()) vorticity_ = Field2D(grid);
-  if (cfg_.pressure_force) {
+  if (models_.reads().rotation) vorticity_ = Field2D(grid);
+  if (models_.reads().pressure_gradient) {
     dpdx_ = Field2D(grid);
     dpdy_ = Field2D(grid);
   }
@@ -119,8 +119,8 @@ void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHal
   halo_ = &halo;
   // The fields a slab makes in every cell and exchanges (members: their addresses stay).
   derived_fields_.clear();
-  if (needs_vorticity()) derived_fields_.push_back(&vorticity_);
-  if (cfg_.pressure_force) {
+  if (models_.reads().rotation) derived_fields_.push_back(&vorticity_);
+  if (models_.reads().pressure_gradient) {
     derived_fields_.push_back(&dpdx_);
     derived_fields_.push_back(&dpdy_);
   }
@@ -136,8 +136,8 @@ void GasParticleCoupling::move_to_slab(const Grid2D& slab, int first_column, Gas
   halo_ = &halo;
   alpha_p_ = Field2D(grid_);
   alpha_g_ = Field2D(grid_, 1.0);
-  if (needs_vorticity()) vorticity_ = Field2D(grid_);
-  if (cfg_.pressure_force) {
+  if (models_.reads().rotation) vorticity_ = Field2D(grid_);
+  if (models_.reads().pressure_gradient) {
     dpdx_ = Field2D(grid_);
     dpdy_ = Field2D(grid_);
   }
@@ -157,14 +157,6 @@ void GasParticleCoupling::fill_ghosts(std::span<Field2D* const> fields, int j0, 
   const bool right = halo_ == nullptr || halo_->owns_right_boundary();
   for (Field2D* f : fields) copy_edge_to_ghosts(grid_, *f, j0, j1, left, right);
   if (halo_ != nullptr) halo_->exchange_columns(fields);
-}
-
-bool GasParticleCoupling::needs_vorticity() const { return cfg_.magnus || cfg_.rotation_torque; }
-
-std::vector<std::string> GasParticleCoupling::model_descriptions() const {
-  std::vector<std::string> d;
-  for (const auto& m : models_) d.push_back(m->description());
-  return d;
 }
 
 void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j1) const {
@@ -315,12 +307,13 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   col_.work = attach("exchange_work", "J");
   col_.heat = attach("exchange_heat", "J");
   col_.relative_rotation = carried("relative_rotation", "rad/s");
-  forcing_.drag = cfg_.drag;
-  forcing_.magnus = cfg_.magnus;
-  forcing_.pressure = cfg_.pressure_force;
-  forcing_.torque = cfg_.rotation_torque;
-  forcing_.heat = cfg_.heat_transfer;
-  forcing_.magnus_sign = cfg_.magnus_convention == aero::MagnusConvention::Standard ? 1.0 : -1.0;
+  // The sub-step effects are what the models write.
+  const ForceParts& parts = models_.writes();
+  forcing_.drag = parts.drag;
+  forcing_.magnus = parts.magnus;
+  forcing_.pressure = parts.pressure;
+  forcing_.torque = parts.torque;
+  forcing_.heat = parts.heat;
   forcing_.gas_u = col_.gas_u;
   forcing_.gas_v = col_.gas_v;
   forcing_.gas_rotation = col_.gas_rotation;
@@ -347,7 +340,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
 }
 
 void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j0, int j1, int i1) {
-  const bool vorticity = needs_vorticity(), gradient = cfg_.pressure_force;
+  const bool vorticity = models_.reads().rotation, gradient = models_.reads().pressure_gradient;
   if (!vorticity && !gradient) return;
   const int nx = grid_.nx(), ny = grid_.ny();
   j0 = std::max(j0, 0);
@@ -401,8 +394,8 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   }
   if (halo_ == nullptr) {
     derivatives_near_parcels(g, j0, j1, i1);
-    if (needs_vorticity()) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
-    if (cfg_.pressure_force) {
+    if (models_.reads().rotation) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
+    if (models_.reads().pressure_gradient) {
       copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
       copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
     }
@@ -412,8 +405,8 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
     const int nx = grid_.nx();
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
     for (int j = 0; j < grid_.ny(); ++j) {
-      if (needs_vorticity()) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
-      if (cfg_.pressure_force) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
+      if (models_.reads().rotation) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
+      if (models_.reads().pressure_gradient) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
     }
     if (!derived_fields_.empty()) fill_ghosts(derived_fields_, 0, grid_.ny());
     // Ghosts are sampled inside the slab (their samples are their owners', refreshed later).
@@ -437,7 +430,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   double* kappa = ps.column(col_.torque).data();
   double* H = ps.column(col_.heat_coef).data();
   const double d = dem_cfg_.particle_diameter;
-  const bool vort = needs_vorticity();
+  const bool vort = models_.reads().rotation;
   // Batches of parcels: each is sampled, then every model runs over the whole batch (one
   // virtual call per model and batch). Dynamic scheduling: parcels in disturbed gas cost
   // several times those in uniform gas (whose stencils are uniform and whose drag needs no
@@ -445,7 +438,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
   // own: any schedule and batching gives the same bits.
   constexpr std::size_t kBatch = 64;
   const std::size_t batches = (n + kBatch - 1) / kBatch;
-  const bool pressure = cfg_.pressure_force;
+  const bool pressure = models_.reads().pressure_gradient;
 #pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelMinimum)
   for (std::size_t b = 0; b < batches; ++b) {
     std::array<ModelInput, kBatch> in;
@@ -489,7 +482,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps, std
       in[q].slip = std::sqrt(sx * sx + sy * sy);
       in[q].re = s.rho * in[q].slip * d / s.mu;
     }
-    for (const auto& m : models_) m->coefficients(in.data(), out.data(), count);
+    models_.coefficients(in.data(), out.data(), count);
     for (std::size_t q = 0; q < count; ++q) {
       const std::size_t k = k0 + q;
       const GasSample& s = in[q].gas;

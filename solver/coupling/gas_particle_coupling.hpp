@@ -92,9 +92,11 @@ class GasParticleCoupling {
   ParcelColumn stepped_column() const { return col_.active; }
   ParcelColumn gas_pressure_column() const { return col_.gas_p; }
 
-  bool needs_vorticity() const;
+  /// The force parts the active models write (the outputs leave the others out: a column of
+  /// zeros would read as a computed zero force).
+  const ForceParts& force_parts() const { return models_.writes(); }
   /// One line per active model, for `dustlift info`.
-  std::vector<std::string> model_descriptions() const;
+  std::vector<std::string> model_descriptions() const { return models_.descriptions(); }
 
   /// What one advance() leaves for the next (checkpoints read it through alpha_p(),
   /// rows_touched(), rest_pressure() and rest_temperature()): the deposited alpha_p
@@ -185,7 +187,7 @@ class GasParticleCoupling {
   GasConfig gas_cfg_;
   DemConfig dem_cfg_;
   double particle_volume_ = 0.0;  ///< V_p of one real particle
-  std::vector<std::unique_ptr<CouplingModel>> models_;
+  CouplingModels models_;
   class GasProperties;
   std::unique_ptr<GasProperties> props_;
   GasForcing forcing_;
