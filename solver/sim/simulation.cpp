@@ -89,7 +89,7 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
       total_parcels_ = parcels_->size();
       parcels_->set_ghost_margin(std::max(scene_.coupling.influence_width, scene_.particles.parcel_diameter));
       parcels_->set_decomposition(*comm_, parcel_cuts());
-      coupling_->set_slab(whole_grid_, layout_.first_column(), *halo_);
+      coupling_->set_slab(whole_grid_, layout_.first_column(), *halo_, *comm_);
     }
     if (!decomposed_) total_parcels_ = parcels_->size();
     coupling_->set_skip_resting(scene_.run.skip_at_rest);
@@ -466,7 +466,7 @@ std::string Simulation::work_summary() const {
   if (parcels_) {
     const auto& c = coupling_->timings();
     const auto& d = parcels_->timings();
-    s << ", coupling sample " << c.sample << " s, relief " << c.relief << " s, deposit " << c.deposit
+    s << ", coupling sample " << c.sample << " s, relief " << c.implicit_exchange << " s, deposit " << c.deposit
       << " s, DEM contacts " << d.contacts << " s, integration " << d.integrate << " s, rebuilds " << d.rebuild
       << " s";
   }
