@@ -89,9 +89,9 @@ int main(int argc, char** argv) {
     const auto& d = p->timings();
     const double substeps = static_cast<double>(p->steps());
     const double stepped = static_cast<double>(p->parcel_substeps());
-    const double coupled = c.sample + c.relief + c.deposit + d.contacts + d.integrate + d.rebuild;
+    const double coupled = c.sample + c.implicit_exchange + c.deposit + d.contacts + d.integrate + d.rebuild;
     std::printf(" sample_s=%.3f relief_s=%.3f deposit_s=%.3f contacts_s=%.3f integrate_s=%.3f rebuild_s=%.3f", c.sample,
-                c.relief, c.deposit, d.contacts, d.integrate, d.rebuild);
+                c.implicit_exchange, c.deposit, d.contacts, d.integrate, d.rebuild);
     std::printf(" parcels=%zu substeps=%.0f rebuilds=%lld parcel_substeps_per_s=%.4g all_parcel_substeps_per_s=%.4g",
                 p->size(), substeps, p->neighbour_rebuilds(), stepped / coupled,
                 substeps * static_cast<double>(p->size()) / coupled);

@@ -10,20 +10,11 @@
 namespace dustlift {
 namespace {
 
-/// Whether the run computes a force part (a column of zeros would read as a computed zero
-/// force, so the parts of effects that are off are not written).
+/// Whether the run computes a force part: the coupling's models say which they write (a
+/// column of zeros would read as a computed zero force, so the others are not written).
 bool computed(const StateView& v, ForcePart part) {
-  const CouplingConfig& c = v.scene->coupling;
-  switch (part) {
-    case ForcePart::Drag:
-      return c.drag;
-    case ForcePart::Magnus:
-      return c.magnus;
-    case ForcePart::Pressure:
-      return c.pressure_force;
-    default:
-      return true;
-  }
+  if (part == ForcePart::None || part == ForcePart::Contact) return true;
+  return v.coupling != nullptr && v.coupling->force_parts().has(part);
 }
 Vec2Columns force_part(const StateView& v, ForcePart part, const std::vector<double>& fx,
                        const std::vector<double>& fy) {

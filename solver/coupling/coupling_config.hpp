@@ -1,8 +1,9 @@
 #pragma once
 // Which gas-particle effects act, and their model options (paper Table 1, eqs. 7-16).
 // Every effect that is off costs nothing: no loop runs and no field is computed for it.
-#include "solver/coupling/aerodynamics.hpp"
 #include "solver/coupling/grid_transfer.hpp"
+#include "solver/coupling/models/drag.hpp"
+#include "solver/coupling/models/magnus.hpp"
 
 namespace dustlift {
 

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <utility>
 
+#include "solver/coupling/models/drag.hpp"
+#include "solver/coupling/models/heat_transfer.hpp"
+#include "solver/coupling/models/magnus.hpp"
+#include "solver/coupling/models/rotation_torque.hpp"
 #include "solver/dem/contact_law.hpp"
 #include "solver/dem/parcel_system.hpp"
 
@@ -197,11 +201,12 @@ struct ForcedArrays {
   double *drag_fx, *drag_fy, *magnus_fx, *magnus_fy, *fluid_torque, *heat_rate, *relative_rotation;
 };
 
-/// Symplectic Euler under contacts and the frozen-gas forcing (GasForcing); the effects that
-/// are off are compiled out. Store: write the force parts for the observers.
+/// Symplectic Euler under contacts and the frozen-gas forcing (GasForcing): each effect's
+/// sub-step law is its coupling model's (solver/coupling/models/), and the effects that are
+/// off are compiled out. Store: write the force parts for the observers.
 template <bool Drag, bool Magnus, bool Pressure, bool Torque, bool Heat, bool Store>
 double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, double gx,
-                               double gy, double inv_c, double magnus_sign) {
+                               double gy, double inv_c) {
   // Local restrict copies (through the struct the compiler would assume aliasing).
   double* __restrict px = a.x;
   double* __restrict py = a.y;
@@ -246,13 +251,14 @@ double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, 
     const double wrel = grot[i] - w0;
     double dfx = 0.0, dfy = 0.0, mfx = 0.0, mfy = 0.0;
     if constexpr (Drag) {
-      dfx = K[i] * urx;
-      dfy = K[i] * ury;
+      const Vec2 f = DragModel::force(K[i], {urx, ury});
+      dfx = f.x;
+      dfy = f.y;
     }
     if constexpr (Magnus) {
-      const double m = magnus_sign * M[i] * wrel;  // Table 1: m z x u_r
-      mfx = -m * ury;
-      mfy = m * urx;
+      const Vec2 f = MagnusModel::force(M[i], wrel, {urx, ury});
+      mfx = f.x;
+      mfy = f.y;
     }
     const double ex = dfx + mfx, ey = dfy + mfy;  // exchanged with the gas (eq. 13)
     double fx = ex, fy = ey;
@@ -272,13 +278,13 @@ double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, 
     double tq = ctq[i];
     double fluid_tq = 0.0;
     if constexpr (Torque) {
-      fluid_tq = kap[i] * wrel;
+      fluid_tq = RotationTorqueModel::torque(kap[i], wrel);
       tq += fluid_tq;
     }
     pw[i] = w0 + dt * tq * ii[i];
     double q = 0.0;
     if constexpr (Heat) {
-      q = H[i] * (gT[i] - pT[i]);
+      q = HeatTransferModel::heat_flow(H[i], gT[i], pT[i]);
       pT[i] += dt * q * im[i] * inv_c;  // eq. (7)
       heat[i] += q * dt;
     }
@@ -366,12 +372,11 @@ void ParcelSystem::integrate_forced(double dt, bool store_parts) {
                        heat_rate.data(),
                        col(f.relative_rotation)};
   const std::size_t n = active_count();
-  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity,
-               sign = f.magnus_sign;
+  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity;
   const std::array<bool, 6> flags{f.drag, f.magnus, f.pressure, f.torque, f.heat, store_parts};
   const double max_d2 =
       dispatch_flags(flags, [&]<bool D, bool M, bool P, bool T, bool H, bool S>() {
-        return integrate_forced_kernel<D, M, P, T, H, S>(a, n, dt, gx, gy, inv_c, sign);
+        return integrate_forced_kernel<D, M, P, T, H, S>(a, n, dt, gx, gy, inv_c);
       });
   if (max_d2 > 1.0) needs_rebuild_ = true;
 }

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/parallel_minimum.hpp"
 #include "solver/core/phase_timer.hpp"
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_ranks.hpp"
@@ -26,23 +27,17 @@
 
 namespace dustlift {
 
-/// Below this many parcels the loops run on one thread: a parallel region costs more than
-/// the work (and on a shared machine, threads waiting for a busy core cost far more).
-/// Results do not depend on it (every parcel gathers its own sums).
-inline constexpr std::size_t kParallelMinimum = 4096;
-
 /// Sub-step gas forcing of the parcels (frozen gas over one CFD step), per REAL particle:
-///   F = K (u_g - v) + s M (Omega_g - w) z x (u_g - v) + F_p,   M_z = kappa (Omega_g - w),
+///   F = K (u_g - v) + M (Omega_g - w) z x (u_g - v) + F_p,   M_z = kappa (Omega_g - w),
 ///   Q = H (T_g - T),
 /// with the gas values u_g, Omega_g (half the vorticity), T_g and the coefficients K, M,
-/// kappa, H (columns the coupling fills once per CFD step from the tested aero:: kernels,
-/// docs/coupling.md) and F_p the pressure_fx/fy columns. Only the effects switched on are
-/// evaluated. The exchange with the gas, drag + Magnus impulse, its work (with the
-/// symplectic-Euler mean velocity, exactly the kinetic energy it gives) and Q dt, is summed
-/// per parcel over the sub-steps into the accumulator columns.
+/// kappa, H (columns the coupling fills once per CFD step; each law is its model's,
+/// solver/coupling/models/) and F_p the pressure_fx/fy columns. Only the effects the
+/// coupling's models write are evaluated. The exchange with the gas, drag + Magnus impulse, its
+/// work (with the symplectic-Euler mean velocity, exactly the kinetic energy it gives) and Q dt, is
+/// summed per parcel over the sub-steps into the accumulator columns.
 struct GasForcing {
   bool drag = false, magnus = false, pressure = false, torque = false, heat = false;
-  double magnus_sign = 1.0;  ///< +1 standard (Rubinow-Keller) convention, -1 the paper's
   ParcelColumn gas_u, gas_v, gas_rotation, gas_temperature;
   ParcelColumn drag_coefficient, magnus_coefficient, torque_coefficient, heat_coefficient;
   ParcelColumn impulse_x, impulse_y, work, heat_in;  ///< accumulators (zeroed by the coupling)

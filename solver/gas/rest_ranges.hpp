@@ -38,22 +38,6 @@ inline RestReference rest_reference(double u, double v, double p, double T, doub
   return r;
 }
 
-/// A parcel's motion and the contact loads on it (per real particle).
-struct ParcelMotion {
-  double vx, vy, omega, radius;
-  double fx, fy, torque;  ///< contact force and torque
-  double mass_real, inertia_real;
-};
-
-/// Whether a parcel counts as still: its speed, the surface speed of its spin, and the speed
-/// its contact force and torque would add within dt, each at most du (m/s). du = 0: all of
-/// them exactly zero (the comparisons are written so that no product can underflow to zero).
-inline bool parcel_still(const ParcelMotion& m, double du, double dt) {
-  return std::abs(m.vx) <= du && std::abs(m.vy) <= du && std::abs(m.omega) <= du / m.radius &&
-         std::abs(m.fx) <= du * m.mass_real / dt && std::abs(m.fy) <= du * m.mass_real / dt &&
-         std::abs(m.torque) <= du * m.inertia_real / (m.radius * dt);
-}
-
 /// One grid row's u, v, p, T from its first cell on, `n` cells.
 struct RowView {
   const double* u;

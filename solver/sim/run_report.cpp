@@ -105,7 +105,7 @@ std::string Simulation::work_summary() const {
   if (parcels_) {
     const auto& c = coupling_->timings();
     const auto& d = parcels_->timings();
-    s << ", coupling sample " << c.sample << " s, relief " << c.relief << " s, deposit "
+    s << ", coupling sample " << c.sample << " s, implicit exchange " << c.implicit_exchange << " s, deposit "
       << c.deposit << " s, DEM contacts " << d.contacts << " s, integration " << d.integrate
       << " s, rebuilds " << d.rebuild << " s";
   }

@@ -51,7 +51,7 @@ void SlabDriver::split_parcels() {
   parcel_slabs_->set_copy_margin(
       std::max(sim_.scene_.coupling.influence_width, sim_.scene_.particles.parcel_diameter));
   parcel_slabs_->split(*sim_.parcels_, parcel_cuts());
-  sim_.coupling_->set_slab(sim_.whole_grid_, layout_.first_column(), *halo_);
+  sim_.coupling_->set_slab(sim_.whole_grid_, layout_.first_column(), *halo_, *comm_);
 }
 
 long long SlabDriver::cell_updates() const {

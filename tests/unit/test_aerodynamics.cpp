@@ -4,7 +4,11 @@
 
 #include <cmath>
 
-#include "solver/coupling/aerodynamics.hpp"
+#include "solver/coupling/models/drag.hpp"
+#include "solver/coupling/models/heat_transfer.hpp"
+#include "solver/coupling/models/magnus.hpp"
+#include "solver/coupling/models/pressure_force.hpp"
+#include "solver/coupling/models/rotation_torque.hpp"
 
 using namespace dustlift;
 using namespace dustlift::aero;

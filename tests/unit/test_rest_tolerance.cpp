@@ -1,10 +1,12 @@
-// What counts as "at rest" for the skipping (rest_ranges.hpp): exact by default, within
-// run.rest_tolerance when it is set (the scene key's checks: test_scene.cpp).
+// What counts as "at rest" for the skipping, of cells (rest_ranges.hpp) and of parcels
+// (resting_parcels.hpp): exact by default, within run.rest_tolerance when it is set (the scene
+// key's checks: test_scene.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
+#include "solver/coupling/resting_parcels.hpp"
 #include "solver/gas/rest_ranges.hpp"
 
 using namespace dustlift;

@@ -4,13 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <vector>
-#include <map>
 
 #include "solver/core/derivatives.hpp"
-#include "solver/coupling/aerodynamics.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
+#include "solver/coupling/models/pressure_force.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/transport.hpp"
 #include "solver/sim/simulation.hpp"

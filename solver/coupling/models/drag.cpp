@@ -1,7 +1,10 @@
-#include "solver/coupling/aerodynamics.hpp"
+#include "solver/coupling/models/drag.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include "solver/coupling/coupling_config.hpp"
 
 namespace dustlift::aero {
 namespace {
@@ -21,10 +24,18 @@ double re_cd_fit(double re, double a, double b, double c, double e, double f) {
   return re_cd_fit_ln(re, std::log(re), a, b, c, e, f);
 }
 
-double re_cd_standard_ln(double re, double l) { return re_cd_fit_ln(re, l, 0.15, 0.687, 0.42, 42500.0, 1.16); }
-double re_cd_mcr_ln(double re, double l) { return re_cd_fit_ln(re, l, 0.15, 0.684, 0.513, 483.0, 0.669); }
-double re_cd_m1_ln(double re, double l) { return re_cd_fit_ln(re, l, 0.118, 0.813, 0.69, 3550.0, 0.793); }
-double re_cd_m175_ln(double re, double l) { return re_cd_fit_ln(re, l, 0.107, 0.867, 0.646, 861.0, 0.634); }
+double re_cd_standard_ln(double re, double l) {
+  return re_cd_fit_ln(re, l, 0.15, 0.687, 0.42, 42500.0, 1.16);
+}
+double re_cd_mcr_ln(double re, double l) {
+  return re_cd_fit_ln(re, l, 0.15, 0.684, 0.513, 483.0, 0.669);
+}
+double re_cd_m1_ln(double re, double l) {
+  return re_cd_fit_ln(re, l, 0.118, 0.813, 0.69, 3550.0, 0.793);
+}
+double re_cd_m175_ln(double re, double l) {
+  return re_cd_fit_ln(re, l, 0.107, 0.867, 0.646, 861.0, 0.634);
+}
 
 /// Quadratic Lagrange interpolation in l = ln Re through nodes C1..C3 with values f1..f3
 /// (Parmar et al. 2010, eq. for zeta).
@@ -42,9 +53,13 @@ double lagrange_ln_re(double l, const double (&c)[3], const double (&f)[3]) {
 
 }  // namespace
 
-double re_cd_standard(double re) { return re_cd_fit(re, 0.15, 0.687, 0.42, 42500.0, 1.16); }
+double re_cd_standard(double re) {
+  return re_cd_fit(re, 0.15, 0.687, 0.42, 42500.0, 1.16);
+}
 
-double cd_standard(double re) { return re_cd_standard(re) / re; }
+double cd_standard(double re) {
+  return re_cd_standard(re) / re;
+}
 
 double re_cd_parmar(double m, double re) {
   constexpr double kMcr = 0.6;
@@ -67,25 +82,34 @@ double re_cd_parmar(double m, double re) {
   }
   const double ms = std::min(m, 1.75);  // the fits end at M = 1.75; hold beyond
   static constexpr double c[3] = {6.48, 8.93, 12.21};
-  const double f[3] = {
-      -2.963 + 4.392 * ms - 1.169 * ms * ms - 0.027 * ms * ms * ms - 0.233 * std::exp((1.0 - ms) / 0.011),
-      -6.617 + 12.11 * ms - 6.501 * ms * ms + 1.182 * ms * ms * ms - 0.174 * std::exp((1.0 - ms) / 0.010),
-      -5.866 + 11.57 * ms - 6.665 * ms * ms + 1.312 * ms * ms * ms - 0.350 * std::exp((1.0 - ms) / 0.012)};
+  const double f[3] = {-2.963 + 4.392 * ms - 1.169 * ms * ms - 0.027 * ms * ms * ms -
+                           0.233 * std::exp((1.0 - ms) / 0.011),
+                       -6.617 + 12.11 * ms - 6.501 * ms * ms + 1.182 * ms * ms * ms -
+                           0.174 * std::exp((1.0 - ms) / 0.010),
+                       -5.866 + 11.57 * ms - 6.665 * ms * ms + 1.312 * ms * ms * ms -
+                           0.350 * std::exp((1.0 - ms) / 0.012)};
   const double zeta2 = lagrange_ln_re(l_lagrange, c, f);
   const double m1 = re_cd_m1_ln(re, l);
   return m1 + (re_cd_m175_ln(re, l) - m1) * zeta2;
 }
 
-double cd_parmar(double m, double re) { return re_cd_parmar(m, re) / re; }
+double cd_parmar(double m, double re) {
+  return re_cd_parmar(m, re) / re;
+}
 
-double xi1_parmar(double m, double re) { return re_cd_parmar(m, re) / re_cd_standard(re); }
+double xi1_parmar(double m, double re) {
+  return re_cd_parmar(m, re) / re_cd_standard(re);
+}
 
 double xi2(double alpha_g, const VolumeFractionCorrection& c) {
   const double phi = std::clamp(1.0 - alpha_g, 0.0, c.phi_cap);
   switch (c.kind) {
-    case VolumeFractionCorrection::Kind::None: return 1.0;
-    case VolumeFractionCorrection::Kind::Linear: return 1.0 + 5.94 * phi;
-    case VolumeFractionCorrection::Kind::Sangani: break;
+    case VolumeFractionCorrection::Kind::None:
+      return 1.0;
+    case VolumeFractionCorrection::Kind::Linear:
+      return 1.0 + 5.94 * phi;
+    case VolumeFractionCorrection::Kind::Sangani:
+      break;
   }
   const double ag = 1.0 - phi;
   return (1.0 + 2.0 * phi) / (ag * ag * ag);
@@ -100,36 +124,27 @@ double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compre
 
 Vec2 drag_force(const GasAtParcel& g, Vec2 up, double d, const VolumeFractionCorrection& c) {
   const Vec2 ur = g.u - up;
-  return ur * drag_coefficient(g, ur.norm(), d, true, c);
-}
-
-double lun_liu_factor(double re) { return re <= 1.0 ? 1.0 : 0.178 + 0.822 * std::pow(re, -0.522); }
-
-Vec2 magnus_force(double rho, double d, Vec2 u_r, double omega_rel, double c_lm, MagnusConvention conv) {
-  // Table 1 with the |.| bars restored: 1/2 rho |u_r|^2 (pi d^2/4) C_LM (d |w_r|/|u_r|)
-  // (w_r x u_r)/(|w_r||u_r|) = C_LM (pi/8) rho d^3 (w_r x u_r).
-  const double k = c_lm * kPi / 8.0 * rho * d * d * d;
-  const double sign = conv == MagnusConvention::Standard ? 1.0 : -1.0;
-  return cross(sign * k * omega_rel, u_r);
-}
-
-double rotation_torque(double rho, double mu, double d, double omega_rel, double stokes_below) {
-  const double w = std::abs(omega_rel);
-  if (w == 0.0) return 0.0;
-  const double re_w = rho * w * d * d / (4.0 * mu);
-  if (re_w < stokes_below) return kPi * mu * d * d * d * omega_rel;  // Stokes: C_T = 16 pi / Re_w
-  if (re_w < 1e-100) {
-    // The same fit with Re_w = rho w d^2 / (4 mu) divided out: C_T d^5 rho w / 64 =
-    // 32.1 * 4/64 mu d^3 + 6.45 * 2/64 d^4 sqrt(mu rho w). Below here Re_w of a subnormal w
-    // underflows to 0 and the form below would give inf * 0 = NaN.
-    return (2.00625 * mu * d * d * d + 0.2015625 * d * d * d * d * std::sqrt(mu * rho * w)) * omega_rel;
-  }
-  const double ct = 6.45 / std::sqrt(re_w) + 32.1 / re_w;
-  return ct * (d * d * d * d * d) * rho * omega_rel * w / 64.0;
-}
-
-double heat_flow(double lambda, double nusselt, double d, double t_gas, double t_particle) {
-  return kPi * d * d * (nusselt * lambda / d) * (t_gas - t_particle);
+  return DragModel::force(drag_coefficient(g, ur.norm(), d, true, c), ur);
 }
 
 }  // namespace dustlift::aero
+
+namespace dustlift {
+
+DragModel::DragModel(const CouplingConfig& c)
+    : compressible_(c.compressibility_correction), xi2_(c.volume_fraction) {}
+
+std::string DragModel::description() const {
+  std::string s = "drag: Clift-Gauvin";
+  if (compressible_) s += " x Parmar xi_1(M, Re)";
+  if (xi2_.kind == aero::VolumeFractionCorrection::Kind::Sangani) s += " x Sangani xi_2(alpha_g)";
+  if (xi2_.kind == aero::VolumeFractionCorrection::Kind::Linear) s += " x (1 + 5.94 alpha_p)";
+  if (xi2_.kind != aero::VolumeFractionCorrection::Kind::None && xi2_.phi_cap < 1.0) {
+    std::ostringstream cap;
+    cap << " (alpha_p capped at " << xi2_.phi_cap << ")";
+    s += cap.str();
+  }
+  return s;
+}
+
+}  // namespace dustlift

@@ -1,0 +1,198 @@
+// Step 1 of a CFD step: the gas at every stepped parcel (eq. 16), the derived fields the
+// models read near the parcels, and the models' coefficients of the sub-step laws.
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "solver/core/derivatives.hpp"
+#include "solver/coupling/gas_particle_coupling.hpp"
+#include "solver/coupling/gas_properties.hpp"
+
+namespace dustlift {
+
+void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j0, int j1, int i1) {
+  const bool vorticity = models_.reads().rotation, gradient = models_.reads().pressure_gradient;
+  if (!vorticity && !gradient) return;
+  const int nx = grid_.nx(), ny = grid_.ny();
+  j0 = std::max(j0, 0);
+  j1 = std::min(j1, ny);
+  i1 = std::min(i1, nx);
+  if (j1 <= j0 || i1 <= 0) return;
+  // A parcel's interpolation quad lies within one cell of the cell holding its centre, and
+  // that cell has alpha_p > 0 (the last deposit was made at the current positions). So the
+  // quads read only cells within one cell of a cell with alpha_p > 0: the derivatives are
+  // made there and nowhere else (above the layer the lifted parcels are sparse, and a row
+  // has few such cells). Each cell's value is the one a full row would give.
+  const int last_column = std::min(i1, nx - 1);  // columns up to i1 reach cells below i1
+  const std::size_t width = static_cast<std::size_t>(nx) + 2;
+  near_scratch_.resize(width * static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1 - j0) * i1 >= kParallelMinimum)
+  for (int j = j0; j < j1; ++j) {
+    // near[i + 1]: column i holds parcels in one of the rows j-1, j, j+1.
+    std::uint8_t* near =
+        near_scratch_.data() + width * static_cast<std::size_t>(omp_get_thread_num());
+    std::fill(near, near + width, std::uint8_t{0});
+    for (int r = std::max(j - 1, 0); r <= std::min(j + 1, ny - 1); ++r) {
+      const double* a = &alpha_p_(0, r);
+      for (int i = 0; i <= last_column; ++i) near[i + 1] |= static_cast<std::uint8_t>(a[i] > 0.0);
+    }
+    // Runs of cells i with parcels in columns i-1..i+1.
+    int i = 0;
+    while (i < i1) {
+      while (i < i1 && (near[i] | near[i + 1] | near[i + 2]) == 0) ++i;
+      const int begin = i;
+      while (i < i1 && (near[i] | near[i + 1] | near[i + 2]) != 0) ++i;
+      if (i == begin) break;
+      if (vorticity) vorticity_z_segment(grid_, *g.u, *g.v, j, begin, i, vorticity_);
+      if (gradient) gradient_segment(grid_, *g.p, j, begin, i, dpdx_, dpdy_);
+    }
+  }
+}
+
+void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
+  const std::size_t active = stepped_.count;
+  const GasPrimitives g = gas.primitives();
+  // The derivatives are needed where the sampled parcels' quads read them: their rows and
+  // columns, two cells of margin (the quad and the 3-point stencils).
+  int j0 = 0, j1 = 0, i1 = grid_.nx();
+  // A slab makes them in every cell whatever it steps, and row_range is collective there.
+  if (active == ps.size() || slab_) {
+    row_range(ps, j0, j1);
+  } else if (active > 0) {
+    j0 = std::max(0, grid_.y().locate(stepped_.y_min) - 2);
+    j1 = std::min(grid_.ny(), grid_.y().locate(stepped_.y_max) + 3);
+    i1 = std::min(grid_.nx(), grid_.x().locate(stepped_.x_max) + 3);
+  } else {
+    i1 = 0;
+  }
+  const bool vort = models_.reads().rotation, pressure = models_.reads().pressure_gradient;
+  if (!slab_) {
+    derivatives_near_parcels(g, j0, j1, i1);
+    if (vort) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
+    if (pressure) {
+      copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
+      copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
+    }
+  } else {
+    // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
+    // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
+    const int nx = grid_.nx();
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
+    for (int j = 0; j < grid_.ny(); ++j) {
+      if (vort) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
+      if (pressure) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
+    }
+    if (!slab_->derived_fields.empty())
+      fill_ghosts(grid_, slab(), slab_->derived_fields, 0, grid_.ny());
+    // Ghosts are sampled inside the slab (their samples are their owners', refreshed later).
+    std::vector<double>& sample_x = slab_->sample_x;
+    sample_x.assign(ps.x.begin(), ps.x.begin() + static_cast<std::ptrdiff_t>(active));
+    const double lo = grid_.x().center(0), hi = grid_.x().center(grid_.nx() - 1);
+    for (std::size_t k = 0; k < active; ++k) {
+      if (ps.is_ghost(k)) sample_x[k] = std::clamp(sample_x[k], lo, hi);
+    }
+  }
+  const double* x_sampled = slab_ ? slab_->sample_x.data() : ps.x.data();
+  const std::size_t n = active;
+  double* gu = ps.column(col_.gas_u).data();
+  double* gv = ps.column(col_.gas_v).data();
+  double* grot = ps.column(col_.gas_rotation).data();
+  double* gT = ps.column(col_.gas_T).data();
+  double* gp = ps.column(col_.gas_p).data();
+  double* K_raw = ps.column(col_.drag_raw).data();
+  double* H_raw = ps.column(col_.heat_raw).data();
+  double* K = ps.column(col_.drag).data();
+  double* M = ps.column(col_.magnus).data();
+  double* kappa = ps.column(col_.torque).data();
+  double* H = ps.column(col_.heat_coef).data();
+  const double d = dem_cfg_.particle_diameter;
+  // Batches of parcels: each is sampled, then every model runs over the whole batch (one
+  // virtual call per model and batch). Dynamic scheduling: parcels in disturbed gas cost
+  // several times those in uniform gas (whose stencils are uniform and whose drag needs no
+  // logarithm), and they sit at one end of the x-ordered parcels. Each parcel's result is its
+  // own: any schedule and batching gives the same bits.
+  constexpr std::size_t kBatch = 64;
+  const std::size_t batches = (n + kBatch - 1) / kBatch;
+#pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelMinimum)
+  for (std::size_t b = 0; b < batches; ++b) {
+    std::array<ModelInput, kBatch> in;
+    std::array<SubstepCoefficients, kBatch> out{};
+    const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
+    // The batch's stencils, then each field at all of them (a vector loop per field).
+    InterpolationBatch<kBatch> quads =
+        slab_ ? InterpolationBatch<kBatch>(*slab_->whole, grid_, slab_->first_column)
+              : InterpolationBatch<kBatch>(grid_);
+    quads.push_points(x_sampled + k0, ps.y.data() + k0, count, cfg_.interpolation);
+    enum Sampled { kRho, kU, kV, kP, kT, kAlphaP, kVorticity, kDpdx, kDpdy, kFields };
+    alignas(64) double value[kFields][kBatch];
+    const Field2D* fields[kFields] = {g.rho,
+                                      g.u,
+                                      g.v,
+                                      g.p,
+                                      g.T,
+                                      &alpha_p_,
+                                      vort ? &vorticity_ : nullptr,
+                                      pressure ? &dpdx_ : nullptr,
+                                      pressure ? &dpdy_ : nullptr};
+    for (int f = 0; f < kFields; ++f) {
+      if (fields[f] != nullptr) {
+        quads.apply(*fields[f], value[f]);
+      } else {
+        std::fill(value[f], value[f] + count, 0.0);
+      }
+    }
+    for (std::size_t q = 0; q < count; ++q) {
+      const std::size_t k = k0 + q;
+      GasSample& s = in[q].gas;
+      s.rho = value[kRho][q];
+      s.u = value[kU][q];
+      s.v = value[kV][q];
+      s.p = value[kP][q];
+      s.T = value[kT][q];
+      const GasProperties::At th = props_->thermo(s.T);
+      const TransportProperties tp = props_->transport(s.T, th.cp);
+      s.mu = tp.mu;
+      s.lambda = tp.lambda;
+      s.c = th.c;
+      s.cp = th.cp;
+      s.alpha_g = 1.0 - std::min(value[kAlphaP][q], cfg_.max_volume_fraction);
+      s.vorticity = value[kVorticity][q];
+      s.dpdx = value[kDpdx][q];
+      s.dpdy = value[kDpdy][q];
+      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d};
+      const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
+      in[q].slip = std::sqrt(sx * sx + sy * sy);
+      in[q].re = s.rho * in[q].slip * d / s.mu;
+    }
+    models_.coefficients(in.data(), out.data(), count);
+    for (std::size_t q = 0; q < count; ++q) {
+      const std::size_t k = k0 + q;
+      const GasSample& s = in[q].gas;
+      const SubstepCoefficients& c = out[q];
+      gu[k] = s.u;
+      gv[k] = s.v;
+      grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
+      gT[k] = s.T;
+      gp[k] = s.p;
+      K_raw[k] = K[k] = c.drag;
+      M[k] = c.magnus;
+      kappa[k] = c.torque;
+      H_raw[k] = H[k] = c.heat;
+      ps.pressure_fx[k] = c.pressure_fx;
+      ps.pressure_fy[k] = c.pressure_fy;
+    }
+  }
+  // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).
+  double* exchanged[] = {ps.column(col_.impulse_x).data(), ps.column(col_.impulse_y).data(),
+                         ps.column(col_.work).data(), ps.column(col_.heat).data()};
+  const std::size_t all = ps.size();
+#pragma omp parallel for schedule(static) if (all >= kParallelMinimum)
+  for (std::size_t k = 0; k < all; ++k) {
+    for (double* c : exchanged) c[k] = 0.0;
+  }
+}
+
+}  // namespace dustlift

@@ -1,0 +1,100 @@
+// The implicit exchange factors of a CFD step (see apply_implicit_exchange in
+// gas_particle_coupling.hpp): per cell from the sums of its parcels' sampled drag and heat
+// coefficients and their capacities, then per parcel as its stencil's average.
+#include "solver/coupling/gas_particle_coupling.hpp"
+#include "solver/coupling/gas_properties.hpp"
+
+namespace dustlift {
+
+void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSystem& ps,
+                                                  double dt) {
+  const std::size_t active = stepped_.count;
+  int j0 = 0, j1 = 0;
+  row_range(ps, j0, j1);
+  // The stencils are current since the last deposit, unless there was none.
+  stencils_.update(grid_, slab(), ps, ps.size());
+  // The stepped parcels read the cells of columns [0, c]; those sum every parcel reaching them.
+  const int c = active < ps.size()
+                    ? (active == 0 ? -1 : stencils_.column_bound(grid_, stepped_.x_max))
+                    : grid_.nx() - 1;
+  const std::size_t reaching = c < 0 ? 0 : stencils_.parcels_reaching(grid_, ps, c);
+  clear_rows(grid_, implicit_.data(), j1, c + 1);
+  stencils_.plan(grid_, reaching);
+  const double* K_raw = ps.column(col_.drag_raw).data();
+  const double* H_raw = ps.column(col_.heat_raw).data();
+  double* K = ps.column(col_.drag).data();
+  double* H = ps.column(col_.heat_coef).data();
+  // Per-cell sums over all parcels (the resting ones' samples are current), each in parcel
+  // order (thread-independent).
+  const double c_p = dem_cfg_.heat_capacity;
+  const double* n_real = ps.n_real.data();
+  const double* mass = ps.mass.data();
+  stencils_.run([&](std::size_t k, int m) {
+    const DepositStencil& st = stencils_[k];
+    const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
+    if (i > c) return;
+    const double f = st.fraction[static_cast<std::size_t>(m)];
+    ImplicitExchangeCell& r = implicit_[grid_.index(i, j)];
+    r.drag += f * (n_real[k] * K_raw[k]);
+    r.heat += f * (n_real[k] * H_raw[k]);
+    r.mass += f * mass[k];
+    r.heat_capacity += f * mass[k] * c_p;
+  });
+  const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
+  const GasPrimitives g = gas.primitives();
+  const int nx = c + 1;
+  // Rows one at a time: the cells holding parcels are mostly in the layer's few rows at the
+  // bottom, which a static split gave to one thread. Every cell on its own.
+#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1) * nx >= kParallelMinimum)
+  for (int j = 0; j < j1; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      ImplicitExchangeCell& r = implicit_[grid_.index(i, j)];
+      if (r.mass == 0.0) continue;
+      const double m_gas = gas_mass_density(i, j) * grid_.area(i, j);
+      const GasProperties::At th = props_->thermo((*g.T)(i, j));
+      const double cv_gas = th.cp / th.gamma;
+      r.drag = 1.0 / (1.0 + dt * r.drag * (1.0 / m_gas + 1.0 / r.mass));
+      r.heat = 1.0 / (1.0 + dt * r.heat * (1.0 / (m_gas * cv_gas) + 1.0 / r.heat_capacity));
+    }
+  }
+  if (slab_) {
+    // A parcel at the cut reads the neighbour's factors too.
+    Field2D& drag_factor = slab_->drag_factor;
+    Field2D& heat_factor = slab_->heat_factor;
+    for (int j = 0; j < j1; ++j) {
+      for (int i = 0; i < grid_.nx(); ++i) {
+        drag_factor(i, j) = implicit_[grid_.index(i, j)].drag;
+        heat_factor(i, j) = implicit_[grid_.index(i, j)].heat;
+      }
+    }
+    Field2D* const factors[] = {&drag_factor, &heat_factor};
+    fill_ghosts(grid_, slab(), factors, 0, j1);
+    const int ng = grid_.ghosts();
+    for (int j = 0; j < j1; ++j) {
+      for (int k = 1; k <= ng; ++k) {
+        for (const int i : {-k, grid_.nx() - 1 + k}) {
+          implicit_[grid_.index(i, j)].drag = drag_factor(i, j);
+          implicit_[grid_.index(i, j)].heat = heat_factor(i, j);
+        }
+      }
+    }
+  }
+  const std::size_t n = active;
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t k = 0; k < n; ++k) {
+    if (ps.is_ghost(k)) continue;  // its owner's (a ghost's stencil may leave the slab)
+    const DepositStencil& st = stencils_[k];
+    double drag_factor = 0.0, heat_factor = 0.0;
+    for (int m = 0; m < st.count; ++m) {
+      const int i = st.i[static_cast<std::size_t>(m)], j = st.j[static_cast<std::size_t>(m)];
+      const double f = st.fraction[static_cast<std::size_t>(m)];
+      const ImplicitExchangeCell& r = implicit_[grid_.index(i, j)];
+      drag_factor += f * r.drag;
+      heat_factor += f * r.heat;
+    }
+    K[k] *= drag_factor;
+    H[k] *= heat_factor;
+  }
+}
+
+}  // namespace dustlift

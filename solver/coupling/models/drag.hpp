@@ -1,0 +1,86 @@
+#pragma once
+// Drag (Table 1): the published law per real particle, F = beta u_r with the standard curve of
+// Clift & Gauvin, Parmar's compressibility factor xi_1(M, Re) and the volume-fraction factor
+// xi_2(alpha_g); its sub-step coefficient K = beta at the step's slip and the sub-step force
+// F = K u_r at the parcel's current slip. Garbled print forms in the paper are corrected as
+// physics-reference.md §3 explains.
+#include <string>
+
+#include "solver/core/vec2.hpp"
+#include "solver/coupling/models/coupling_model.hpp"
+
+namespace dustlift {
+
+struct CouplingConfig;
+
+namespace aero {
+
+/// Standard drag curve, Clift & Gauvin (1970); physics-reference §3.1 (the paper's print lacks
+/// the 0.687 exponent and multiplies where it should divide).
+double cd_standard(double re);
+/// Re * C_D,std: finite as Re -> 0 (Stokes limit 24).
+double re_cd_standard(double re);
+
+/// Parmar, Haselbacher & Balachandar (2010) compressible drag C_D(M, Re); M > 1.75 holds the
+/// M = 1.75 fit (not fitted beyond).
+double cd_parmar(double mach, double re);
+double re_cd_parmar(double mach, double re);
+/// xi_1(M, Re) = C_D(M, Re) / C_D,std(Re).
+double xi1_parmar(double mach, double re);
+
+/// How the volume-fraction correction xi_2(alpha_g) is evaluated.
+struct VolumeFractionCorrection {
+  enum class Kind { None, Sangani, Linear };
+  Kind kind = Kind::Sangani;
+  /// phi = alpha_p is capped at this value before evaluation (1 = no cap).
+  double phi_cap = 1.0;
+};
+/// Sangani, Zhang & Prosperetti (1991) as used by Ling et al. (2012):
+/// xi_2 = (1 + 2 phi) / (1 - phi)^3; Linear: 1 + 5.94 phi; None: 1.
+double xi2(double alpha_g, const VolumeFractionCorrection& c);
+
+/// Local gas state interpolated to a parcel (eq. 16).
+struct GasAtParcel {
+  double rho = 1.0;    ///< kg/m^3 (gas density, not alpha_g rho)
+  Vec2 u{};            ///< m/s
+  double mu = 1.8e-5;  ///< Pa s
+  double c = 340.0;    ///< m/s
+  double alpha_g = 1.0;
+};
+
+/// Drag per unit slip speed of one real particle, beta in F_drag = beta u_r (Table 1):
+/// beta = 3 pi mu d (Re C_D / 24) xi_2(alpha_g), C_D with Parmar's xi_1(M, Re) when
+/// `compressible`, else the Clift-Gauvin curve; finite at zero slip (Stokes).
+double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compressible,
+                        const VolumeFractionCorrection& c);
+
+/// Drag on one real particle of diameter d moving with velocity up (Table 1):
+/// F = 3 pi mu d u_r (Re/24) C_D,std xi_1 xi_2, u_r = u_g - u_p.
+Vec2 drag_force(const GasAtParcel& g, Vec2 up, double d, const VolumeFractionCorrection& c);
+
+}  // namespace aero
+
+class DragModel final : public BatchedCouplingModel<DragModel> {
+ public:
+  static constexpr ModelTraits kTraits{.reads = {}, .writes = {.drag = true}};
+
+  /// The sub-step force per real particle at the slip u_r: F = K u_r.
+  static Vec2 force(double K, Vec2 u_r) { return {K * u_r.x, K * u_r.y}; }
+
+  explicit DragModel(const CouplingConfig& c);
+  std::string description() const override;
+  /// K = beta (aero::drag_coefficient) at the step's slip.
+  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
+    const GasSample& g = in.gas;
+    const ParcelAtSample& p = in.parcel;
+    const double slip = in.slip;
+    const aero::GasAtParcel at{g.rho, {g.u, g.v}, g.mu, g.c, g.alpha_g};
+    out.drag = aero::drag_coefficient(at, slip, p.diameter, compressible_, xi2_);
+  }
+
+ private:
+  bool compressible_;
+  aero::VolumeFractionCorrection xi2_;
+};
+
+}  // namespace dustlift
