@@ -9,7 +9,7 @@ Each rank holds one slab of the paper grid's size (950 x 160 cells + 2 ghost lay
 channel grows with the ranks (P x 237.5 mm). Per rank and step:
   compute  3 stages x cells x active fraction / cell-stage rate of one rank
   halo     E exchanges per step (5 for the gas: porosity at the step's start, 3 stages, the
-           final fill; 10 with dust, measured: alpha_p, the derivatives, the relief factors);
+           final fill; 10 with dust, measured: alpha_p, the derivatives, the implicit-exchange factors);
            an interior rank sends and receives one message per neighbour each:
            2 x (alpha + m / beta), m = 6 fields x 2 columns x 164 rows x 8 B = 15,744 B
            (measured, work summary; the coupling's messages are smaller, counted as these)

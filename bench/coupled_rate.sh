@@ -2,7 +2,7 @@
 # Issue 9's coupled parcel-sub-step rate against the standalone DEM, measured in one sitting
 # (docs/performance.md, "Measured"): the standalone DEM benchmark (bench_dem_layer, median of
 # REPS repetitions) right before and right after a paper-scene run to END on THREADS threads,
-# then the coupled rate (parcel-sub-steps stepped per second of coupled time: sample, relief,
+# then the coupled rate (parcel-sub-steps stepped per second of coupled time: sample, implicit exchange,
 # deposit, DEM contacts, integration, rebuilds; from the run's `work:` and `time:` lines)
 # as a share of the mean of the two standalone medians. The host's speed drifts, which is
 # why the yardstick is measured on both sides of the run and both values are printed.
@@ -40,7 +40,7 @@ threads = sys.argv[4]
 done = re.findall(r"^done: .*$", log, re.M)[-1]
 stepped = int(re.findall(r"([0-9]+) parcel-sub-steps", log)[-1])
 times = {k.strip(): float(v) for k, v in re.findall(r"([A-Za-z ]+?) ([0-9.]+) s", log.split("time:")[-1])}
-phases = ("coupling sample", "relief", "deposit", "DEM contacts", "integration", "rebuilds")
+phases = ("coupling sample", "implicit exchange", "deposit", "DEM contacts", "integration", "rebuilds")
 coupled = sum(times[p] for p in phases)
 rate = stepped / coupled / 1e6
 mean = 0.5 * (before + after)

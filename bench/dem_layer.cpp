@@ -1,4 +1,4 @@
-// DEM throughput on the reference setup (docs/dem.md, "Benchmark"):
+// DEM throughput on the reference setup (docs/dem.md, "Benchmark"):
 // 60,000 parcels of 100 um (rho 980, areal fraction 0.589) filling a box 400 mm x 2 mm,
 // periodic in x, walls at y = 0 and 2 mm, every parcel at 1 m/s in a random direction;
 // k_n = 5e4 N/m, k_t = 2/7 k_n, Coulomb friction 0.5, normal restitution 0.9,
@@ -56,7 +56,8 @@ void BM_DemReferenceLayer(benchmark::State& state) {
     state.counters["parcels"] = static_cast<double>(s.size());
     state.counters["rebuilds"] = static_cast<double>(s.neighbour_rebuilds());
     state.counters["contacts_end"] = static_cast<double>(s.contact_pair_count());
-    state.counters["list_slots_per_parcel"] = static_cast<double>(s.nbr_index.size()) / static_cast<double>(s.size());
+    state.counters["list_slots_per_parcel"] =
+        static_cast<double>(s.nbr_index.size()) / static_cast<double>(s.size());
   }
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(static_cast<double>(particle_steps), benchmark::Counter::kIsRate);
@@ -67,6 +68,13 @@ void BM_DemReferenceLayer(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_DemReferenceLayer)->Arg(1)->Arg(2)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_DemReferenceLayer)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
-int main(int argc, char** argv) { return dustlift::bench::run_benchmarks(argc, argv); }
+int main(int argc, char** argv) {
+  return dustlift::bench::run_benchmarks(argc, argv);
+}

@@ -1,4 +1,4 @@
-// Cost of the particle code in a gas-only scene (issue: "a gas-only scene with the particle
+// Cost of the particle code in a gas-only scene ("a gas-only scene with the particle
 // code compiled in runs within 5 % of the time of the same scene before coupling existed").
 // Before coupling, a step was GasSolver::stable_dt() + GasSolver::step(); now it is
 // Simulation::advance(), which must add nothing measurable when the scene has no particles.
@@ -60,4 +60,6 @@ BENCHMARK(BM_SimulationAdvanceGasOnly)->Unit(benchmark::kMillisecond)->UseRealTi
 
 }  // namespace
 
-int main(int argc, char** argv) { return dustlift::bench::run_benchmarks(argc, argv); }
+int main(int argc, char** argv) {
+  return dustlift::bench::run_benchmarks(argc, argv);
+}

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The paper's dust layer as plain DEM on 1 and 2 ranks (issue 12; docs/parallel.md), in one
+# The paper's dust layer as plain DEM on 1 and 2 ranks (docs/parallel.md), in one
 # sitting: bench_mpi_dem_layer_ranks (60,000 parcels, 400 mm x 2 mm, 1 m/s random, STEPS
 # steps), REPS rounds of three runs in turn,
 #   A: 1 rank x 2 threads (OpenMP only), B: 2 ranks x 1 thread (MPI only), C: 1 rank x 1 thread,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# 1 rank against 2 ranks on the paper grid (issue 12; docs/parallel.md), in one sitting:
+# 1 rank against 2 ranks on the paper grid (docs/parallel.md), in one sitting:
 # cases/paper/vertical_shock_gas.toml to END, REPS rounds of three runs in turn,
 #   A: 1 rank x 2 threads (OpenMP only, today's default), B: 2 ranks x 1 thread (MPI only),
 #   C: 1 rank x 1 thread (the yardstick both divide),

@@ -13,6 +13,7 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
+#include "insitu/view_fields.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/time_targets.hpp"
 

@@ -5,9 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "solver/core/derivatives.hpp"
-#include "solver/sim/derived_fields.hpp"
-
 namespace dustlift {
 
 void GasCellArrays::resize(std::size_t nx, std::size_t ny) {
@@ -68,14 +65,6 @@ void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2
       out.vorticity[k] = vorticity(i, j);
     }
   }
-}
-
-const Field2D& vorticity_of(const StateView& view, Field2D& scratch) {
-  if (view.derived != nullptr) return view.derived->vorticity();
-  const Grid2D& g = *view.grid;
-  if (scratch.size() != g.size_with_ghosts()) scratch = Field2D(g);
-  vorticity_z_rows(g, *view.primitives.u, *view.primitives.v, 0, g.ny(), scratch);
-  return scratch;
 }
 
 }  // namespace dustlift

@@ -7,7 +7,6 @@
 
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_solver.hpp"
-#include "solver/sim/observer.hpp"
 
 namespace dustlift {
 
@@ -41,11 +40,5 @@ struct GasCellArrays {
 void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
                       const Field2D& vorticity, const std::function<double(int, int)>& sound_speed,
                       GasCellArrays& out);
-
-/// The vorticity of what the view shows: the run's derived field (made once per step,
-/// StateView::derived), or for a view made by hand, made here into `scratch`. On an MPI
-/// rank's slab the derivatives at the cuts read the ghost columns, which hold the
-/// neighbours' cells, so every piece holds the one-rank values.
-const Field2D& vorticity_of(const StateView& view, Field2D& scratch);
 
 }  // namespace dustlift

@@ -7,6 +7,7 @@
 #include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/series_table.hpp"
+#include "insitu/view_fields.hpp"
 
 namespace dustlift {
 namespace {

@@ -61,9 +61,9 @@ struct ParcelArraysCopy {
   std::vector<std::int32_t> id;
 };
 
-/// The rows of `all` whose flag in `drop` is 0 (a rank's own parcels, its ghost copies left
-/// out), copied into `storage` in their order, as a view with the same arrays. An empty
-/// `drop` keeps every row (still a copy).
+/// The rows of `all` whose flag in `drop` is 0 (a rank's own parcels, its copies of other ranks'
+/// parcels left out), copied into `storage` in their order, as a view with the same arrays. An
+/// empty `drop` keeps every row (still a copy).
 ParcelArraysView kept_rows(const ParcelArraysView& all, std::span<const std::uint8_t> drop,
                            ParcelArraysCopy& storage);
 

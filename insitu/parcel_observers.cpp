@@ -37,7 +37,7 @@ class VtkParcelWriter final : public Observer {
     }
     // The rank's table holds copies of its neighbours' parcels: those are theirs to write.
     const ParcelArraysView all = parcels_of_(view);
-    const ParcelArraysView own = kept_rows(all, view.piece->parcel_ghosts, own_);
+    const ParcelArraysView own = kept_rows(all, view.piece->parcel_copies, own_);
     write_in_pieces(
         *files_, *view.piece, view.time, "vtp",
         [&](const std::string& path) { write_parcels_vtp(own, path, vtk_file_info_of(view)); },
@@ -82,7 +82,9 @@ class VtkParcelWriter final : public Observer {
 class BandForceObserver final : public Observer {
  public:
   BandForceObserver(BandForceOptions options, BandParcelsOf parcels_of)
-      : options_(std::move(options)), parcels_of_(std::move(parcels_of)), series_(options_.bands, options_.averaging) {
+      : options_(std::move(options)),
+        parcels_of_(std::move(parcels_of)),
+        series_(options_.bands, options_.averaging) {
     if (!parcels_of_) throw std::invalid_argument("BandForceObserver: no parcel adaptor");
     if (options_.bands.empty()) throw std::invalid_argument("BandForceObserver: no band");
   }
@@ -117,7 +119,8 @@ class BandForceObserver final : public Observer {
   }
   void restore_state(const Snapshot& s, const std::string& prefix) override {
     try {
-      trajectory_.assign(snapshot_array(s.f64, prefix + "shock_times"), snapshot_array(s.f64, prefix + "shock_reaches"));
+      trajectory_.assign(snapshot_array(s.f64, prefix + "shock_times"),
+                         snapshot_array(s.f64, prefix + "shock_reaches"));
     } catch (const std::invalid_argument& e) {
       throw SnapshotError(prefix + "shock_times/shock_reaches: " + e.what());
     }
@@ -145,14 +148,14 @@ class BandForceObserver final : public Observer {
       x_centers_ = interior_centers(grid.x());
       y_centers_ = interior_centers(grid.y());
     }
-    const double shock_x = shock_position(x_centers_, y_centers_, pressure_,
-                                          options_.shock.p_ambient, options_.shock.threshold,
-                                          options_.shock.y_min);
+    const double shock_x =
+        shock_position(x_centers_, y_centers_, pressure_, options_.shock.p_ambient,
+                       options_.shock.threshold, options_.shock.y_min);
     BandParcelsView parcels = parcels_of_(view);
     trajectory_.record(view.time, shock_x, max_shock_advance(grid.x()));
     arrival_.resize(parcels.count);
-    band_arrival_times(trajectory_, options_.bands, parcels.initial_position.x, parcels.initial_position.y,
-                       arrival_);
+    band_arrival_times(trajectory_, options_.bands, parcels.initial_position.x,
+                       parcels.initial_position.y, arrival_);
     parcels.arrival_time = arrival_;
     series_.add(parcels, view.time);
     sampled_ = true;

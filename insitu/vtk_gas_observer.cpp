@@ -8,6 +8,7 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
+#include "insitu/view_fields.hpp"
 #include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
 #include "solver/parallel/communicator.hpp"

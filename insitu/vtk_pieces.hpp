@@ -1,7 +1,7 @@
 #pragma once
 // One output of a VTK series written in pieces by the ranks of a decomposed run: each rank
-// its slab's piece, rank 0 the summary file (.pvtr/.pvtp) that the .pvd lists (issue 12;
-// docs/output.md). VTK-free.
+// its slab's piece, rank 0 the summary file (.pvtr/.pvtp) that the .pvd lists
+// (docs/output.md). VTK-free.
 #include <functional>
 #include <string>
 #include <vector>

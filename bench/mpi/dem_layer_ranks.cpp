@@ -1,4 +1,4 @@
-// The paper's dust layer as plain DEM on x-slabs of MPI ranks (issue 12; docs/parallel.md):
+// The paper's dust layer as plain DEM on x-slabs of MPI ranks (docs/parallel.md):
 // 60,000 parcels of 100 um (rho 980) in a channel 400 mm x 2 mm (walls at both ends and
 // below, a lid at 2 mm), every parcel at 1 m/s in a random direction, k_n = 5e4 N/m,
 // k_t = 2/7 k_n, friction 0.5, restitution 0.9: bench_dem_layer's reference setup with

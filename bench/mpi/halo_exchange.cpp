@@ -1,4 +1,4 @@
-// What a decomposed step spends talking (issue 12; docs/parallel.md's scaling model), under
+// What a decomposed step spends talking (docs/parallel.md's scaling model), under
 // `mpirun -np 2 build/release/bench/bench_mpi_halo_exchange [GRID]`: the paper grid's slab
 // halo exchange (the six fields of a stage: rho, u, v, p, T and the edge activity, two ghost
 // columns of all 164 rows each way), and the collectives a step makes (the time step's min,

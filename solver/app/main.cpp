@@ -3,6 +3,7 @@
 // Exit codes: 0 success, 2 bad input (scene, options, output folder, checkpoint),
 // 3 numerical failure, 4 interrupted (SIGINT/SIGTERM; checkpoint written).
 // `run --restart CHECKPOINT` continues a run in its folder (docs/reliability.md).
+#include <fmt/core.h>
 #include <omp.h>
 #include <unistd.h>
 
@@ -12,7 +13,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fmt/core.h>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -42,14 +42,19 @@ namespace {
 /// checkpoint's state invalid) or what its series hold (a continued series would mix two
 /// definitions).
 void check_restart_overrides(const std::vector<std::string>& overrides) {
-  static const char* const allowed[] = {"run.end_time", "run.max_steps", "run.progress_interval", "output.interval",
-                                        "output.checkpoint_interval", "output.checkpoint_wall_interval"};
+  static const char* const allowed[] = {"run.end_time",
+                                        "run.max_steps",
+                                        "run.progress_interval",
+                                        "output.interval",
+                                        "output.checkpoint_interval",
+                                        "output.checkpoint_wall_interval"};
   for (const auto& o : overrides) {
     const std::string key = o.substr(0, o.find('='));
     if (std::find(std::begin(allowed), std::end(allowed), key) == std::end(allowed)) {
-      throw SceneError("--set '" + o + "': a restart continues the same run and may only change run.end_time, " +
-                       "run.max_steps, run.progress_interval, output.interval, output.checkpoint_interval and " +
-                       "output.checkpoint_wall_interval");
+      throw SceneError(
+          "--set '" + o + "': a restart continues the same run and may only change run.end_time, " +
+          "run.max_steps, run.progress_interval, output.interval, output.checkpoint_interval and " +
+          "output.checkpoint_wall_interval");
     }
   }
 }
@@ -59,8 +64,9 @@ std::string command_line_of(int argc, char** argv) {
   std::string line;
   for (int k = 0; k < argc; ++k) {
     const std::string a = argv[k];
-    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                         "0123456789_./=:,+-@%") == std::string::npos;
+    const bool plain = !a.empty() && a.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                         "0123456789_./=:,+-@%") == std::string::npos;
     std::string quoted = "'";
     for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     line += (k ? " " : "") + (plain ? a : quoted + "'");
@@ -88,8 +94,8 @@ const std::string& text_of(const Snapshot& s, const std::string& name, const std
 
 /// `run`: a scene (or a checkpoint's scene) into its output folder.
 int run_command(std::string scene_path, const std::string& restart_path, std::string out_dir,
-                const std::vector<std::string>& overrides, bool overwrite, const std::string& command_line,
-                const Communicator* comm) {
+                const std::vector<std::string>& overrides, bool overwrite,
+                const std::string& command_line, const Communicator* comm) {
   if (scene_path.empty() == restart_path.empty()) {
     throw SceneError("run: give either a scene file or --restart CHECKPOINT (one of them)");
   }
@@ -100,20 +106,26 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
     check_restart_overrides(overrides);
     std::vector<std::string> all = split_lines(text_of(restart, "scene/overrides", restart_path));
     all.insert(all.end(), overrides.begin(), overrides.end());
-    scene = parse_scene(text_of(restart, "scene/text", restart_path), text_of(restart, "scene/name", restart_path), all);
+    scene = parse_scene(text_of(restart, "scene/text", restart_path),
+                        text_of(restart, "scene/name", restart_path), all);
     const auto t = restart.f64.find("run/time");
-    const double t_checkpoint = t != restart.f64.end() && t->second.size() == 1 ? t->second[0] : 0.0;
+    const double t_checkpoint =
+        t != restart.f64.end() && t->second.size() == 1 ? t->second[0] : 0.0;
     if (!(end_target(scene.run.end_time, scene.output.interval) > t_checkpoint)) {
-      throw SceneError(fmt::format("key 'run.end_time': {:g} s is not after the checkpoint time {:g} s "
-                                   "(extend it with --set run.end_time=...)", scene.run.end_time, t_checkpoint));
+      throw SceneError(
+          fmt::format("key 'run.end_time': {:g} s is not after the checkpoint time {:g} s "
+                      "(extend it with --set run.end_time=...)",
+                      scene.run.end_time, t_checkpoint));
     }
     scene_path = restart_path;
   } else {
     scene = load_scene(scene_path, overrides);
   }
   // A restart continues the run in the folder of its checkpoint unless told otherwise.
-  const std::string restart_folder = restart_path.empty() ? "" : fs::absolute(restart_path).parent_path().string();
-  if (out_dir.empty()) out_dir = restart_path.empty() ? (fs::path("out") / scene.run.name).string() : restart_folder;
+  const std::string restart_folder =
+      restart_path.empty() ? "" : fs::absolute(restart_path).parent_path().string();
+  if (out_dir.empty())
+    out_dir = restart_path.empty() ? (fs::path("out") / scene.run.name).string() : restart_folder;
   RunOptions options;
   options.scene_label = scene_path;
   options.restart = restart_path.empty() ? nullptr : &restart;
@@ -130,7 +142,7 @@ int main(int argc, char** argv) {
   // Threads wait passively after a short spin unless the user chose a policy
   // (solver/core/wait_policy.hpp); libgomp reads it before main, hence the restart.
   reexec_with_default_wait_policy(argv);
-  // `mpirun -np N dustlift run SCENE`: N ranks, one x-slab each (issue 12; docs/parallel.md).
+  // `mpirun -np N dustlift run SCENE`: N ranks, one x-slab each (docs/parallel.md).
   const ParallelSession mpi(argc, argv);
   const std::unique_ptr<Communicator> world = make_world_communicator();
   const bool several = world->size() > 1;
@@ -151,39 +163,56 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "run a scene and write its output folder");
   run->add_option("scene", scene_path, "scene file (TOML); not with --restart");
-  run->add_option("--restart", restart_path,
-                  "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
-                  "run.max_steps, run.progress_interval, output.*)");
-  run->add_option("--out,-o", out_dir,
-                  "output folder (default: out/<run.name>; with --restart, the checkpoint's folder)");
-  run->add_flag("--overwrite", overwrite, "empty an existing output folder of an earlier run first");
+  run->add_option(
+      "--restart", restart_path,
+      "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
+      "run.max_steps, run.progress_interval, output.*)");
+  run->add_option(
+      "--out,-o", out_dir,
+      "output folder (default: out/<run.name>; with --restart, the checkpoint's folder)");
+  run->add_flag("--overwrite", overwrite,
+                "empty an existing output folder of an earlier run first");
   // One value per --set/--vary, so a scene named after them is not taken for another value.
   run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)")
       ->allow_extra_args(false);
-  run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
 
-  auto* sweep_cmd = app.add_subcommand("sweep", "run every combination of scene overrides and summarise them");
+  auto* sweep_cmd =
+      app.add_subcommand("sweep", "run every combination of scene overrides and summarise them");
   sweep_cmd->add_option("scene", scene_path, "scene file (TOML); replaces the study file's scene");
-  sweep_cmd->add_option("--vary", varies,
-                        "key=v1,v2,... (one axis; repeatable); k1=a,b;k2=c,d changes keys together")
+  sweep_cmd
+      ->add_option("--vary", varies,
+                   "key=v1,v2,... (one axis; repeatable); k1=a,b;k2=c,d changes keys together")
       ->allow_extra_args(false);
-  sweep_cmd->add_option("--study", study_path, "study file (TOML: scene, [[vary]], set, stations, lift_threshold)");
-  sweep_cmd->add_option("--out,-o", out_dir, "output folder: one sub-folder per run, summary.csv, summary.h5")
+  sweep_cmd->add_option("--study", study_path,
+                        "study file (TOML: scene, [[vary]], set, stations, lift_threshold)");
+  sweep_cmd
+      ->add_option("--out,-o", out_dir,
+                   "output folder: one sub-folder per run, summary.csv, summary.h5")
       ->required();
-  sweep_cmd->add_option("--set", overrides, "override a scene key in every run (repeatable)")->allow_extra_args(false);
-  sweep_cmd->add_flag("--overwrite", overwrite, "empty an existing sweep folder of an earlier sweep first");
-  sweep_cmd->add_option("--stations", sweep.stations, "x (m) of the h(x) columns (default: output.surface_stations)")
+  sweep_cmd->add_option("--set", overrides, "override a scene key in every run (repeatable)")
+      ->allow_extra_args(false);
+  sweep_cmd->add_flag("--overwrite", overwrite,
+                      "empty an existing sweep folder of an earlier sweep first");
+  sweep_cmd
+      ->add_option("--stations", sweep.stations,
+                   "x (m) of the h(x) columns (default: output.surface_stations)")
       ->delimiter(',')
       ->allow_extra_args(false);
-  sweep_cmd->add_option("--lift-threshold", sweep.lift_threshold,
-                        fmt::format("m above the layer top that counts as lifted (default {:g})", kDefaultLiftThreshold))
+  sweep_cmd
+      ->add_option("--lift-threshold", sweep.lift_threshold,
+                   fmt::format("m above the layer top that counts as lifted (default {:g})",
+                               kDefaultLiftThreshold))
       ->check(CLI::PositiveNumber);
   sweep_cmd->add_option("--threads,-t", threads, "OpenMP threads per run (default: all cores)")
       ->check(CLI::Range(1, 1024));
 
-  auto* info = app.add_subcommand("info", "print the resolved scene, enabled effects, grid and step estimate");
+  auto* info = app.add_subcommand(
+      "info", "print the resolved scene, enabled effects, grid and step estimate");
   info->add_option("scene", scene_path, "scene file (TOML)")->required();
-  info->add_option("--set", overrides, "override a scene key (repeatable)")->allow_extra_args(false);
+  info->add_option("--set", overrides, "override a scene key (repeatable)")
+      ->allow_extra_args(false);
 
   try {
     app.parse(argc, argv);
@@ -195,8 +224,9 @@ int main(int argc, char** argv) {
 
   try {
     if (several && !run->parsed()) {
-      throw SceneError(fmt::format("only `dustlift run` runs on several MPI ranks ({} here); start `{}` without mpirun",
-                                   world->size(), info->parsed() ? "info" : "sweep"));
+      throw SceneError(fmt::format(
+          "only `dustlift run` runs on several MPI ranks ({} here); start `{}` without mpirun",
+          world->size(), info->parsed() ? "info" : "sweep"));
     }
     if (info->parsed()) {
       const Scene scene = load_scene(scene_path, overrides);
@@ -207,11 +237,13 @@ int main(int argc, char** argv) {
     if (sweep_cmd->parsed()) {
       SweepDefinition definition = study_path.empty() ? SweepDefinition{} : read_study(study_path);
       if (!scene_path.empty()) definition.scene_path = scene_path;
-      if (definition.scene_path.empty()) throw SceneError("sweep: give a scene file or a --study naming one");
+      if (definition.scene_path.empty())
+        throw SceneError("sweep: give a scene file or a --study naming one");
       for (const auto& v : varies) definition.axes.push_back(parse_vary(v));
       definition.overrides.insert(definition.overrides.end(), overrides.begin(), overrides.end());
       if (!sweep.stations.empty()) definition.stations = sweep.stations;
-      if (sweep_cmd->count("--lift-threshold") > 0) definition.lift_threshold = sweep.lift_threshold;
+      if (sweep_cmd->count("--lift-threshold") > 0)
+        definition.lift_threshold = sweep.lift_threshold;
       return run_sweep(definition, out_dir, SweepOptions{threads, overwrite, command_line});
     }
     return run_command(scene_path, restart_path, out_dir, overrides, overwrite, command_line,
@@ -230,7 +262,8 @@ int main(int argc, char** argv) {
     return kExitNumerical;
   } catch (const std::bad_alloc&) {
     // The resource checks of the scene estimate the memory beforehand; this is what they missed.
-    std::cerr << "dustlift: error: out of memory while setting up the run (a smaller grid or fewer parcels)\n";
+    std::cerr << "dustlift: error: out of memory while setting up the run (a smaller grid or fewer "
+                 "parcels)\n";
     if (several) world->abort(kExitBadInput);
     return kExitBadInput;
   } catch (const std::exception& e) {

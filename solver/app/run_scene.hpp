@@ -41,10 +41,10 @@ struct RunOptions {
   /// Set by a caller that handles the signals itself (a sweep: across its runs); replaces
   /// the handler above.
   std::function<bool()> stop_requested;
-  std::string command_line;           ///< recorded in run.log, scene.resolved.toml and the outputs
+  std::string command_line;  ///< recorded in run.log, scene.resolved.toml and the outputs
   /// Observers to add before the output writers (called once; they see every step first).
   std::function<std::vector<std::unique_ptr<Observer>>()> extra_observers;
-  /// Several MPI ranks (issue 12): every rank calls run_scene; rank 0 checks and writes the
+  /// Several MPI ranks: every rank calls run_scene; rank 0 checks and writes the
   /// folder, the log, the outputs and the checkpoints. Null or one rank: the serial run.
   const Communicator* comm = nullptr;
 };

@@ -122,7 +122,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   col_.drag_raw = carried("drag_coefficient_sampled", "N s/m");
   col_.heat_raw = carried("heat_coefficient_sampled", "W/K");
   col_.rest_steps = carried("rest_steps", "1");
-  col_.active = attach("stepped", "1");
+  col_.stepped = attach("stepped", "1");
   col_.drag = attach("drag_coefficient", "N s/m");
   col_.magnus = attach("magnus_coefficient", "N s^2/m^2");
   col_.torque = attach("torque_coefficient", "N m s");
@@ -155,7 +155,7 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   forcing.relative_rotation = col_.relative_rotation;
   parcels.set_gas_forcing(forcing);
   parcels.store_parts_on_last_substep_only(true);
-  parcels.set_activity_column(col_.active);
+  parcels.set_stepped_column(col_.stepped);
   parcels.build_neighbours_if_due();
 
   deposit_alpha(parcels);  // no stencils yet: every column
@@ -171,7 +171,7 @@ void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
   std::size_t first_bad = n;
 #pragma omp parallel for schedule(static) reduction(min : first_bad) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
-    if (ps.is_ghost(k)) continue;  // its owner checks it
+    if (ps.is_rank_copy(k)) continue;  // its owner checks it
     const bool ok = std::isfinite(ps.x[k]) && std::isfinite(ps.y[k]) && std::isfinite(ps.vx[k]) &&
                     std::isfinite(ps.vy[k]) && std::isfinite(ps.omega[k]) &&
                     ps.temperature[k] > 0.0 && std::isfinite(ps.temperature[k]);
@@ -198,25 +198,25 @@ void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
 void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double dt) {
   {
     const ScopedTimer t(timings_.sample);
-    stepped_ = resting_.plan(gas, parcels, dt, grid_, slab(), {col_.rest_steps, col_.active},
+    stepped_ = resting_.plan(gas, parcels, dt, grid_, slab(), {col_.rest_steps, col_.stepped},
                              cfg_.influence_width, skip_resting_);
     sample_gas(gas, parcels);
   }
   if (cfg_.two_way) {
     const ScopedTimer t(timings_.implicit_exchange);
-    // The factors sum every parcel's sampled coefficients, ghosts' included (their owners').
+    // The factors sum every parcel's sampled coefficients, rank copies' included (their owners').
     if (parcels.decomposed()) {
       const ParcelColumn sampled[] = {col_.drag_raw, col_.heat_raw};
-      parcels.refresh_ghost_columns(sampled);
+      parcels.refresh_rank_copies(sampled);
     }
     apply_implicit_exchange(gas, parcels, dt);
   }
   last_substeps_ = parcels.advance(dt);
   const ScopedTimer t(timings_.deposit);
-  // The deposit sums every parcel's exchange, ghosts' included.
+  // The deposit sums every parcel's exchange, rank copies' included.
   if (cfg_.two_way && parcels.decomposed()) {
     const ParcelColumn exchanged[] = {col_.impulse_x, col_.impulse_y, col_.work, col_.heat};
-    parcels.refresh_ghost_columns(exchanged);
+    parcels.refresh_rank_copies(exchanged);
   }
   check_parcels(parcels);
   deposit_exchange(gas, parcels, dt);

@@ -97,7 +97,7 @@ class GasParticleCoupling {
   ParcelColumn gas_rotation_column() const { return col_.gas_rotation; }
   ParcelColumn relative_rotation_column() const { return col_.relative_rotation; }
   /// 1 for the parcels stepped in the last CFD step, 0 for those left resting.
-  ParcelColumn stepped_column() const { return col_.active; }
+  ParcelColumn stepped_column() const { return col_.stepped; }
   ParcelColumn gas_pressure_column() const { return col_.gas_p; }
 
   /// The force parts the active models write (the outputs leave the others out: a column of
@@ -132,7 +132,7 @@ class GasParticleCoupling {
     ParcelColumn impulse_x, impulse_y, work, heat;
     ParcelColumn relative_rotation;
     ParcelColumn rest_steps;  ///< consecutive steps begun exactly at rest in resting gas
-    ParcelColumn active;      ///< 1: stepped this CFD step (ParcelSystem::set_activity_column)
+    ParcelColumn stepped;     ///< 1: stepped this CFD step (ParcelSystem::set_stepped_column)
   };
   /// The rows holding parcels (of every rank on a slab: collective), with two rows of margin
   /// for the interpolation quad and the 3-point derivative stencils.

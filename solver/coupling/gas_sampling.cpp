@@ -87,12 +87,12 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     }
     if (!slab_->derived_fields.empty())
       fill_ghosts(grid_, slab(), slab_->derived_fields, 0, grid_.ny());
-    // Ghosts are sampled inside the slab (their samples are their owners', refreshed later).
+    // Rank copies are sampled inside the slab (their samples are their owners', refreshed later).
     std::vector<double>& sample_x = slab_->sample_x;
     sample_x.assign(ps.x.begin(), ps.x.begin() + static_cast<std::ptrdiff_t>(active));
     const double lo = grid_.x().center(0), hi = grid_.x().center(grid_.nx() - 1);
     for (std::size_t k = 0; k < active; ++k) {
-      if (ps.is_ghost(k)) sample_x[k] = std::clamp(sample_x[k], lo, hi);
+      if (ps.is_rank_copy(k)) sample_x[k] = std::clamp(sample_x[k], lo, hi);
     }
   }
   const double* x_sampled = slab_ ? slab_->sample_x.data() : ps.x.data();

@@ -82,7 +82,7 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
   const std::size_t n = active;
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
-    if (ps.is_ghost(k)) continue;  // its owner's (a ghost's stencil may leave the slab)
+    if (ps.is_rank_copy(k)) continue;  // its owner's (a rank copy's stencil may leave the slab)
     const DepositStencil& st = stencils_[k];
     double drag_factor = 0.0, heat_factor = 0.0;
     for (int m = 0; m < st.count; ++m) {

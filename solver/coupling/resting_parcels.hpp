@@ -42,7 +42,7 @@ struct SteppedParcels {
 class RestingParcels {
  public:
   /// The parcel columns it keeps: the consecutive steps each parcel began exactly at rest in
-  /// resting gas, and 1 for the parcels stepped this step (ParcelSystem::set_activity_column).
+  /// resting gas, and 1 for the parcels stepped this step (ParcelSystem::set_stepped_column).
   struct Columns {
     ParcelColumn rest_steps, active;
   };

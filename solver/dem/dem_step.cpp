@@ -13,15 +13,15 @@
 
 namespace dustlift {
 
-void ParcelSystem::update_active_count() {
-  if (!activity_.valid()) {
-    active_count_ = size();
+void ParcelSystem::update_stepped_count() {
+  if (!stepped_.valid()) {
+    stepped_count_ = size();
     return;
   }
-  const std::vector<double>& a = column(activity_);
+  const std::vector<double>& a = column(stepped_);
   std::size_t k = a.size();
   while (k > 0 && a[k - 1] == 0.0) --k;
-  active_count_ = k;
+  stepped_count_ = k;
 }
 
 double ParcelSystem::wall_position(int w) const {
@@ -37,7 +37,7 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
   if (needs_rebuild_) {
     const ScopedTimer t(timings_.rebuild);
     rebuild_neighbours();
-    update_active_count();  // the sort moved the active parcels
+    update_stepped_count();  // the sort moved the stepped parcels
   }
   {
     const ScopedTimer t(timings_.contacts);
@@ -51,13 +51,13 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
     ranks_->refresh_copies(*this, kinematics);
     needs_rebuild_ = ranks_->any(needs_rebuild_);
   }
-  parcel_substeps_ += static_cast<long long>(active_count());
+  parcel_substeps_ += static_cast<long long>(stepped_count());
   time_ += dt;
   ++steps_;
 }
 
 void ParcelSystem::compute_contacts(double dt) {
-  const std::size_t n = active_count();
+  const std::size_t n = stepped_count();
   const ContactParams pc = cfg_.contact;
   const ContactParams wc = cfg_.wall_contact;
   const double lx = length_x_;
@@ -89,14 +89,14 @@ void ParcelSystem::compute_contacts(double dt) {
   double* __restrict fy_out = contact_fy.data();
   double* __restrict tq_out = contact_torque.data();
   const std::uint8_t* __restrict wmask = wall_mask.data();
-  // A ghost's forces are its owner's (its state is refreshed after every sub-step).
-  const std::uint8_t* __restrict ghost = rank_copy.empty() ? nullptr : rank_copy.data();
+  // A rank copy's forces are its owner's (its state is refreshed after every sub-step).
+  const std::uint8_t* __restrict copy = rank_copy.empty() ? nullptr : rank_copy.data();
 
   // Dynamic chunks: contacts cluster where the layer is disturbed, at one end of the x-ordered
   // parcels. Each parcel gathers its own forces: any schedule gives the same bits.
 #pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
-    if (ghost != nullptr && ghost[i] != 0) {
+    if (copy != nullptr && copy[i] != 0) {
       fx_out[i] = fy_out[i] = tq_out[i] = 0.0;
       continue;
     }
@@ -328,7 +328,7 @@ void ParcelSystem::integrate(double dt, bool store_parts) {
   max_d2 = integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(),
                            inv_mass_real.data(), inv_inertia_real.data(), contact_fx.data(),
                            contact_fy.data(), contact_torque.data(), x_build.data(), y_build.data(),
-                           inv_skin2.data(), active_count(), dt, cfg_.gravity_x, cfg_.gravity_y);
+                           inv_skin2.data(), stepped_count(), dt, cfg_.gravity_x, cfg_.gravity_y);
   // A parcel moved more than its skin: a pair may now be closer than the list knows.
   if (max_d2 > 1.0) needs_rebuild_ = true;
 }
@@ -371,7 +371,7 @@ void ParcelSystem::integrate_forced(double dt, bool store_parts) {
                        fluid_torque.data(),
                        heat_rate.data(),
                        col(f.relative_rotation)};
-  const std::size_t n = active_count();
+  const std::size_t n = stepped_count();
   const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity;
   const std::array<bool, 6> flags{f.drag, f.magnus, f.pressure, f.torque, f.heat, store_parts};
   const double max_d2 =

@@ -58,10 +58,9 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
   cell_of_.resize(n);
   cell_y_.resize(n);
   int cx_lo = cells_x_, cx_hi = 0, cy_lo = cells_y_, cy_hi = 0;
-#pragma omp parallel for schedule(static) reduction(min             \
-                                                    : cx_lo, cy_lo) \
-    reduction(max                                                   \
-              : cx_hi, cy_hi) if (n >= kParallelMinimum)
+  // clang-format off
+#pragma omp parallel for schedule(static) reduction(min : cx_lo, cy_lo) reduction(max : cx_hi, cy_hi) if (n >= kParallelMinimum)
+  // clang-format on
   for (std::size_t i = 0; i < n; ++i) {
     // Clamping keeps parcels outside the domain correct: it is monotone and contracts.
     const int cx =
@@ -122,7 +121,7 @@ ParcelSystem::SkinLimits ParcelSystem::skin_limits() const {
 
 void ParcelSystem::rebuild_neighbours() {
   update_cell_geometry();
-  // A decomposed run first moves parcels to their owners and renews the ghosts; the history
+  // A decomposed run first moves parcels to their owners and renews the rank copies; the history
   // travels with the parcels (redistribute leaves it in old_*).
   const bool distributed = ranks_ != nullptr;
   const bool had_list = distributed ? ranks_->redistribute(*this) : nbr_offset.size() == size() + 1;
@@ -350,7 +349,7 @@ void ParcelSystem::rebuild_neighbours() {
     y_build[i] = y[i];
     inv_skin2[i] = 1.0 / (half_skin[i] * half_skin[i]);
   }
-  // A ghost's moves are its owner's to judge: it never asks for a rebuild here.
+  // A rank copy's moves are its owner's to judge: it never asks for a rebuild here.
   if (distributed) {
     for (std::size_t i = 0; i < n; ++i) {
       if (rank_copy[i] != 0) inv_skin2[i] = 0.0;

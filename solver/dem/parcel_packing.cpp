@@ -77,7 +77,7 @@ std::vector<std::int32_t> ParcelSystem::sort_table_by_key() {
 void ParcelSystem::pack_owned(std::vector<double>& out, bool with_history,
                               const std::function<bool(std::size_t)>& keep) const {
   for (std::size_t i = 0; i < size(); ++i) {
-    if (!is_ghost(i) && (!keep || keep(i))) pack_parcel(i, with_history, out);
+    if (!is_rank_copy(i) && (!keep || keep(i))) pack_parcel(i, with_history, out);
   }
 }
 
@@ -128,11 +128,11 @@ void ParcelSystem::drop_decomposition() {
   rank_copy.clear();
 }
 
-void ParcelSystem::refresh_ghost_columns(std::span<const ParcelColumn> columns) {
+void ParcelSystem::refresh_rank_copies(std::span<const ParcelColumn> columns) {
   if (ranks_ == nullptr) return;
   std::array<std::vector<double>*, 8> arrays{};
   if (columns.size() > arrays.size()) {
-    throw std::invalid_argument("ParcelSystem::refresh_ghost_columns: at most 8 columns at once");
+    throw std::invalid_argument("ParcelSystem::refresh_rank_copies: at most 8 columns at once");
   }
   for (std::size_t k = 0; k < columns.size(); ++k) arrays[k] = &column(columns[k]);
   ranks_->refresh_copies(*this, std::span(arrays.data(), columns.size()));

@@ -18,10 +18,6 @@ class ParcelRanks {
   virtual double min(double value) const = 0;
   double max(double value) const { return -min(-value); }
   virtual bool any(bool value) const = 0;
-  /// Element by element, in place (one message for all of them).
-  virtual void min_each(std::span<double> values) const = 0;
-  /// The lowest-numbered rank's non-empty text ("" when none).
-  virtual std::string first_nonempty(const std::string& text) const = 0;
   /// Before a rebuild's sort: the parcels go to their owners with their contact history,
   /// fresh copies of the others' parcels come in, and the table takes the one-rank order;
   /// the history is left as the rebuild's carried history. Returns whether there was a list

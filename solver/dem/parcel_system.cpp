@@ -151,7 +151,7 @@ int ParcelSystem::advance(double dt_total, const SubstepHook& hook) {
   const int n = substeps_for(dt_total);
   const double dt = dt_total / n;
   const double t0 = time_;
-  update_active_count();
+  update_stepped_count();
   for (int k = 0; k < n; ++k) {
     if (hook) hook(*this, t0 + k * dt);
     step_with_parts(dt, !parts_last_only_ || k == n - 1);
@@ -163,7 +163,7 @@ int ParcelSystem::advance(double dt_total, const SubstepHook& hook) {
 double ParcelSystem::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < size(); ++i) {
-    if (is_ghost(i)) continue;
+    if (is_rank_copy(i)) continue;
     e += 0.5 * mass[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * inertia[i] * omega[i] * omega[i];
   }
   return e;
@@ -175,7 +175,7 @@ double ParcelSystem::mechanical_energy() const {
   const ContactParams& wc = cfg_.wall_contact;
   const bool listed = nbr_offset.size() == size() + 1;
   for (std::size_t i = 0; i < size(); ++i) {
-    if (is_ghost(i)) continue;
+    if (is_rank_copy(i)) continue;
     // Gravity potential of the parcel's real particles.
     e -= mass[i] * (cfg_.gravity_x * x[i] + cfg_.gravity_y * y[i]);
     if (listed) {
@@ -214,7 +214,7 @@ std::size_t ParcelSystem::contact_pair_count() const {
   std::size_t n = 0;
   if (nbr_offset.size() != size() + 1) return 0;
   for (std::size_t i = 0; i < size(); ++i) {
-    if (is_ghost(i)) continue;  // (a pair across ranks is counted on both: a diagnostic)
+    if (is_rank_copy(i)) continue;  // (a pair across ranks is counted on both: a diagnostic)
     for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
       const std::int32_t j = nbr_index[k];
       const double dx = x[j] + nbr_image[k] * length_x_ - x[i], dy = y[j] - y[i];

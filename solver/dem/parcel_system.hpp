@@ -136,42 +136,22 @@ class ParcelSystem : public ParcelTable {
   /// stores. Default: always stored.
   void store_parts_on_last_substep_only(bool on) { parts_last_only_ = on; }
 
-  /// Limits the sub-steps to the parcels up to the last one whose `activity` column value is
+  /// Limits the sub-steps to the parcels up to the last one whose `stepped` column value is
   /// non-zero (the coupling marks those that may move this CFD step; those after them rest
   /// exactly and would not change a bit). Re-read at every advance and after every re-sort.
   /// An invalid handle (the default) steps every parcel.
-  void set_activity_column(ParcelColumn activity) { activity_ = activity; }
-  /// Parcels the current sub-steps run over: [0, active_count()).
-  std::size_t active_count() const { return active_count_ < size() ? active_count_ : size(); }
+  void set_stepped_column(ParcelColumn stepped) { stepped_ = stepped; }
+  /// Parcels the current sub-steps run over: [0, stepped_count()).
+  std::size_t stepped_count() const { return stepped_count_ < size() ? stepped_count_ : size(); }
 
   // ---- Parcels split over ranks (solver/parallel/parcel_slabs.hpp splits them) ----
   bool decomposed() const { return ranks_ != nullptr; }
-  /// Collective when split: the copies take their owners' values of these attached columns
+  /// Collective when split: the rank copies take their owners' values of these attached columns
   /// now (the coupling's samples and exchange sums, which the owners compute).
-  void refresh_ghost_columns(std::span<const ParcelColumn> columns);
-  /// Collective when split: the lowest-numbered rank's non-empty text ("" when none), so
-  /// that a failure one rank finds stops every rank with the same message.
-  std::string first_failure(const std::string& local) const {
-    return ranks_ != nullptr ? ranks_->first_nonempty(local) : local;
-  }
-  /// Collective when split: the largest value over the ranks (the value otherwise).
-  double max_over_ranks(double value) const {
-    return ranks_ != nullptr ? ranks_->max(value) : value;
-  }
-  /// Element by element, in place (one message for all of them).
-  void max_over_ranks(std::span<double> values) const {
-    if (ranks_ == nullptr) return;
-    for (double& v : values) v = -v;
-    ranks_->min_each(values);
-    for (double& v : values) v = -v;
-  }
+  void refresh_rank_copies(std::span<const ParcelColumn> columns);
   /// Back to a one-rank system's bookkeeping (the table is left as it is): a restart first
   /// takes the whole checkpointed system into a copy of this one, then splits it again.
   void drop_decomposition();
-  /// Whether parcel i is another rank's, copied here for the contacts (decomposed runs).
-  bool is_ghost(std::size_t i) const { return is_rank_copy(i); }
-  /// Per parcel: 1 = another rank's copy; empty when the system is not decomposed.
-  std::span<const std::uint8_t> ghost_flags() const { return rank_copy; }
   /// Parcels this rank owns (size() in a one-rank run).
   std::size_t owned_count() const;
 
@@ -243,9 +223,9 @@ class ParcelSystem : public ParcelTable {
 
   GasForcing forcing_;
   bool parts_last_only_ = false;
-  ParcelColumn activity_;
-  std::size_t active_count_ = static_cast<std::size_t>(-1);
-  void update_active_count();
+  ParcelColumn stepped_;
+  std::size_t stepped_count_ = static_cast<std::size_t>(-1);
+  void update_stepped_count();
   Timings timings_;
 
   // Cell grid of the last rebuild.

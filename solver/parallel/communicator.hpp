@@ -1,5 +1,5 @@
 #pragma once
-// The few collective and neighbour operations the decomposed run needs (issue 12), behind an
+// The few collective and neighbour operations the decomposed run needs, behind an
 // interface so that nothing outside solver/parallel/mpi/ includes mpi.h and a build without
 // MPI links the same code (make_world_communicator() then returns a one-rank world).
 #include <cstddef>

@@ -46,12 +46,6 @@ double ParcelSlabs::min(double value) const {
 bool ParcelSlabs::any(bool value) const {
   return comm_->any(value);
 }
-void ParcelSlabs::min_each(std::span<double> values) const {
-  comm_->min_each(values);
-}
-std::string ParcelSlabs::first_nonempty(const std::string& text) const {
-  return comm_->first_nonempty(text);
-}
 
 void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
   if (ps.cfg_.domain.periodic_x) {
@@ -329,7 +323,7 @@ bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   // 3. Take in the parcels that came to this rank.
   exchange_sized();
   take_in(false);
-  // 4. Ghosts: this rank's parcels within reach of another rank's columns.
+  // 4. Copies: this rank's parcels within reach of another rank's columns.
   for (auto& b : send_buf_) b.clear();
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const int cx = cell_column(ps, ps.x[i]);

@@ -47,8 +47,6 @@ class ParcelSlabs final : public ParcelRanks {
   // ParcelRanks
   double min(double value) const override;
   bool any(bool value) const override;
-  void min_each(std::span<double> values) const override;
-  std::string first_nonempty(const std::string& text) const override;
   bool redistribute(ParcelSystem& parcels) override;
   void after_sort(ParcelSystem& parcels, const std::vector<std::int32_t>& old_index,
                   bool permuted) override;

@@ -1,5 +1,5 @@
 #pragma once
-// The channel cut into x-slabs, one per MPI rank (issue 12): where the cuts go, and the
+// The channel cut into x-slabs, one per MPI rank: where the cuts go, and the
 // copies between a slab's fields and the whole grid's (gathers for output, restarts).
 #include <span>
 #include <vector>

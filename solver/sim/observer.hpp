@@ -43,7 +43,7 @@ struct RunPiece {
   bool neighbour_right() const { return rank + 2 < static_cast<int>(column_bounds.size()); }
   /// Per parcel of the view's table: 1 = another rank's copy (a ghost), not written here.
   /// Empty: every parcel is the rank's own.
-  std::span<const std::uint8_t> parcel_ghosts;
+  std::span<const std::uint8_t> parcel_copies;
 };
 
 struct StateView {

@@ -62,8 +62,8 @@ const RunPiece& SlabDriver::piece() const {
   piece_.comm = comm_;
   piece_.rank = layout_.rank;
   piece_.column_bounds = layout_.bounds;
-  piece_.parcel_ghosts =
-      sim_.parcels_ ? sim_.parcels_->ghost_flags() : std::span<const std::uint8_t>();
+  piece_.parcel_copies = sim_.parcels_ ? std::span<const std::uint8_t>(sim_.parcels_->rank_copy)
+                                       : std::span<const std::uint8_t>();
   return piece_;
 }
 
@@ -141,7 +141,7 @@ bool SlabDriver::rebalance() {
     const ParcelSystem& p = *sim_.parcels_;
     const std::vector<double>& stepped = p.column(sim_.coupling_->stepped_column());
     for (std::size_t i = 0; i < p.size(); ++i) {
-      if (p.is_ghost(i)) continue;
+      if (p.is_rank_copy(i)) continue;
       const int column = std::clamp(sim_.whole_grid_.x().locate(p.x[i]) - layout_.first_column(), 0,
                                     sim_.grid_.nx() - 1);
       work[static_cast<std::size_t>(column)] +=

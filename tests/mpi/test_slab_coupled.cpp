@@ -1,4 +1,4 @@
-// The coupled CFD-DEM step on x-slabs over MPI ranks (issue 12), run by ctest as
+// The coupled CFD-DEM step on x-slabs over MPI ranks, run by ctest as
 // `mpirun -np 2`: the shock runs over a dust layer cut between the ranks; rank 0 gathers the
 // gas and the parcels and compares them bit for bit with the same scene on one rank.
 #include <gtest/gtest.h>
@@ -114,12 +114,12 @@ TEST(SlabCoupled, ShockOverDustOnTwoRanksMatchesOneRankBitForBit) {
       static_cast<double>(two.parcels()->size() - two.coupling()->last_active_parcels());
   EXPECT_GT(-world().min(-skipped), 100.0);
   advance_steps(two, kSteps - kEarly);
-  EXPECT_GT(two.parcels()->size(), two.parcels()->owned_count());  // ghosts
+  EXPECT_GT(two.parcels()->size(), two.parcels()->owned_count());  // rank copies
   // The parcels at the cut (within 1 mm of it) have moved.
   const ParcelSystem& p = *two.parcels();
   double moved = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!p.is_ghost(i) && std::abs(p.x_initial[i] - 0.0075) < 1e-3) {
+    if (!p.is_rank_copy(i) && std::abs(p.x_initial[i] - 0.0075) < 1e-3) {
       moved = std::max(moved, std::hypot(p.x[i] - p.x_initial[i], p.y[i] - p.y_initial[i]));
     }
   }

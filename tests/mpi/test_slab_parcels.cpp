@@ -1,4 +1,4 @@
-// The DEM parcels on x-slabs over MPI ranks (issue 12), run by ctest as `mpirun -np 2`:
+// The DEM parcels on x-slabs over MPI ranks, run by ctest as `mpirun -np 2`:
 // both ranks run the decomposed system, rank 0 gathers it and compares it bit for bit with
 // the same system run on one rank in-process (positions, velocities, spins, forces, the
 // parcel order, every neighbour slot and its tangential history, the wall history).
@@ -148,7 +148,7 @@ TEST(SlabParcels, ABedAcrossTheCutMatchesOneRankBitForBit) {
   slabs.split(s, {kCut});
   run(s, kSteps);
   const auto& c = slabs.counters();
-  // Parcels left each rank for the other, and ghosts went both ways.
+  // Parcels left each rank for the other, and copies went both ways.
   EXPECT_GT(c.migrated, 0) << "rank " << world().rank();
   EXPECT_GT(c.copies_sent, 0) << "rank " << world().rank();
   EXPECT_EQ(world().sum(static_cast<long long>(s.owned_count())), 151);
@@ -230,7 +230,7 @@ TEST(SlabParcels, ASystemSplitBetweenRebuildsContinuesBitwise) {
   }
   ParcelSlabs slabs(world());
   slabs.split(s, {kCut});
-  EXPECT_LT(s.owned_count(), s.size());  // ghosts from the start
+  EXPECT_LT(s.owned_count(), s.size());  // rank copies from the start
   run(s, kAfter);
   std::string report;
   EXPECT_EQ(differences_from_one_rank(s, before + kAfter, {}, report), 0) << report;
@@ -266,7 +266,7 @@ void add_layer(ParcelSystem& s) {
   }
 }
 
-TEST(SlabParcels, AThousandsStrongLayerWithGhostColumnsMatchesOneRank) {
+TEST(SlabParcels, AThousandsStrongLayerWithCopiedColumnsMatchesOneRank) {
   constexpr int kSteps = 400;
   ParcelSystem s(layer_config());
   add_layer(s);
@@ -277,22 +277,22 @@ TEST(SlabParcels, AThousandsStrongLayerWithGhostColumnsMatchesOneRank) {
   slabs.split(s, {0.02});
   const double dt = s.stable_time_step();
   for (int k = 0; k < kSteps; ++k) s.step(dt);
-  // A column the owners fill reaches the ghosts.
+  // A column the owners fill reaches the rank copies.
   std::vector<double>& t = s.column(tag);
-  for (std::size_t i = 0; i < s.size(); ++i) t[i] = s.is_ghost(i) ? -1.0 : 1.5 * s.id[i];
+  for (std::size_t i = 0; i < s.size(); ++i) t[i] = s.is_rank_copy(i) ? -1.0 : 1.5 * s.id[i];
   const ParcelColumn refreshed[] = {tag};
-  s.refresh_ghost_columns(refreshed);
-  std::size_t ghosts = 0, wrong = 0;
-  double farthest = 0.0;  // of the ghosts from the cut
+  s.refresh_rank_copies(refreshed);
+  std::size_t copies = 0, wrong = 0;
+  double farthest = 0.0;  // of the rank copies from the cut
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!s.is_ghost(i)) continue;
-    ++ghosts;
+    if (!s.is_rank_copy(i)) continue;
+    ++copies;
     wrong += t[i] != 1.5 * s.id[i] ? 1 : 0;
     farthest = std::max(farthest, std::abs(s.x[i] - 0.02));
   }
-  EXPECT_GT(ghosts, 0u);
+  EXPECT_GT(copies, 0u);
   EXPECT_EQ(wrong, 0u);
-  // The margin widens the ghost band beyond the contact reach (0.2-0.3 mm here without it).
+  // The margin widens the band of copies beyond the contact reach (0.2-0.3 mm here without it).
   EXPECT_GT(farthest, 4.5e-4) << farthest;
   std::vector<double> mine;
   s.pack_owned(mine);
@@ -319,7 +319,7 @@ TEST(SlabParcels, AFailureOnOneRankIsEveryRanksMessage) {
   ParcelSlabs slabs(world());
   slabs.split(s, {kCut});
   const std::string local = world().rank() == 1 ? "parcel id 7: velocity not finite" : "";
-  EXPECT_EQ(s.first_failure(local), "parcel id 7: velocity not finite");
+  EXPECT_EQ(world().first_nonempty(local), "parcel id 7: velocity not finite");
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
-// A coupled step (gas, sampling, relief, DEM sub-steps with rebuilds, deposits) allocates no
-// memory once the run has warmed up: counted by replacing the global operator new in this test
-// executable, over 60 steps of the reduced paper scene after 60 steps of warm-up (the shock is
-// then over the layer, parcels move, lists are rebuilt and the DEM re-sorts).
+// A coupled step (gas, sampling, implicit exchange, DEM sub-steps with rebuilds, deposits)
+// allocates no memory once the run has warmed up: counted by replacing the global operator new in
+// this test executable, over 60 steps of the reduced paper scene after 60 steps of warm-up (the
+// shock is then over the layer, parcels move, lists are rebuilt and the DEM re-sorts).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -11,7 +11,6 @@
 
 #include "solver/dem/parcel_system.hpp"
 #include "solver/sim/simulation.hpp"
-
 #include "support/allocation_counter.hpp"
 
 using test_support::g_allocations;
@@ -20,10 +19,10 @@ using namespace dustlift;
 
 TEST(CoupledAllocation, StepsAllocateNothingOnceRunning) {
   const std::string paper = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock.toml";
-  const std::vector<std::string> reduced{"grid.x.start=-0.02", "grid.x.end=0.04", "grid.x.cells_below=20",
-                                         "particles.layer.x_max=0.04", "grid.y.end=0.012",
-                                         "grid.y.uniform_end=0.008", "grid.y.cells_above=8",
-                                         "initial.position=-0.001"};
+  const std::vector<std::string> reduced{"grid.x.start=-0.02",    "grid.x.end=0.04",
+                                         "grid.x.cells_below=20", "particles.layer.x_max=0.04",
+                                         "grid.y.end=0.012",      "grid.y.uniform_end=0.008",
+                                         "grid.y.cells_above=8",  "initial.position=-0.001"};
   omp_set_num_threads(2);
   Simulation sim(load_scene(paper, reduced));
   for (int s = 0; s < 60; ++s) sim.advance(1.0);

@@ -1,10 +1,10 @@
-// A long run a researcher can trust (issue 14): interrupted by SIGINT/SIGTERM (between steps,
+// A long run a researcher can trust: interrupted by SIGINT/SIGTERM (between steps,
 // during an output, from outside at any moment), restarted from its final checkpoint to a
 // later end, or restarted from a mid-run checkpoint into a folder that already holds later
 // outputs, the run ends with the same state, the same .pvd collections and the same series
 // (band averages included) as the run that was never interrupted: compared bit for bit.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -36,7 +36,6 @@ using dustlift::testing::write_file;
 
 namespace {
 
-
 struct Entry {
   std::string time, file;
 };
@@ -45,7 +44,8 @@ std::vector<Entry> pvd_entries(const fs::path& pvd) {
   const std::string text = read_bytes(pvd);
   const std::regex entry(R"re(timestep="([^"]+)" part="0" file="([^"]+)")re");
   std::vector<Entry> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry);
+       it != std::sregex_iterator(); ++it)
     found.push_back({(*it)[1].str(), (*it)[2].str()});
   return found;
 }
@@ -61,7 +61,8 @@ void expect_consistent_collection(const fs::path& dir, const std::string& prefix
     EXPECT_GT(fs::file_size(dir / entries[k].file), 1000u) << entries[k].file;
     listed.insert(fs::path(entries[k].file).filename().string());
     if (k > 0) {
-      EXPECT_LT(std::stod(entries[k - 1].time), std::stod(entries[k].time)) << prefix << " entry " << k;
+      EXPECT_LT(std::stod(entries[k - 1].time), std::stod(entries[k].time))
+          << prefix << " entry " << k;
     }
   }
   for (const auto& f : fs::directory_iterator(dir / "vtk")) {
@@ -82,14 +83,17 @@ void expect_same_run(const fs::path& reference, const fs::path& continued) {
   const Snapshot b = read_checkpoint((continued / "checkpoint.h5").string());
   expect_bitwise_equal(a, b);
   EXPECT_EQ(a.i64.size(), b.i64.size());
-  const auto insitu_arrays = std::count_if(a.f64.begin(), a.f64.end(), [](const auto& e) { return e.first.rfind("insitu/", 0) == 0; });
+  const auto insitu_arrays = std::count_if(
+      a.f64.begin(), a.f64.end(), [](const auto& e) { return e.first.rfind("insitu/", 0) == 0; });
   EXPECT_GT(insitu_arrays, 40) << "the observers' state is in the checkpoint";
-  for (const char* pvd : {"gas.pvd", "parcels.pvd"}) EXPECT_EQ(read_bytes(reference / pvd), read_bytes(continued / pvd)) << pvd;
+  for (const char* pvd : {"gas.pvd", "parcels.pvd"})
+    EXPECT_EQ(read_bytes(reference / pvd), read_bytes(continued / pvd)) << pvd;
   std::size_t files = 0;
   for (const auto& f : fs::directory_iterator(reference / "series")) {
     if (f.path().extension() != ".csv") continue;
     ++files;
-    EXPECT_EQ(read_bytes(f.path()), read_bytes(continued / "series" / f.path().filename())) << f.path().filename();
+    EXPECT_EQ(read_bytes(f.path()), read_bytes(continued / "series" / f.path().filename()))
+        << f.path().filename();
   }
   EXPECT_EQ(files, 7u);  // shock, surface (2), near layer, two bands, probes
   expect_consistent_collection(continued, "gas");
@@ -119,7 +123,8 @@ class InterruptRestart : public ::testing::Test {
   /// The run never interrupted, into `name`.
   fs::path reference(const std::string& name, const std::string& extra = "") {
     const fs::path out = dir_ / name;
-    const auto r = run_cli("run " + scene_.string() + " --out " + out.string() + " --threads 2" + extra);
+    const auto r =
+        run_cli("run " + scene_.string() + " --out " + out.string() + " --threads 2" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     return out;
   }
@@ -130,7 +135,8 @@ class InterruptRestart : public ::testing::Test {
 /// before the writers, so the signal arrives while that output is being written.
 class RaiseDuringOutput final : public Observer {
  public:
-  RaiseDuringOutput(int output, int signal, int count) : output_(output), signal_(signal), count_(count) {}
+  RaiseDuringOutput(int output, int signal, int count)
+      : output_(output), signal_(signal), count_(count) {}
   void on_start(const StateView&) override {}
   void on_output(const StateView&) override {
     if (++outputs_ == output_)
@@ -145,16 +151,19 @@ class RaiseDuringOutput final : public Observer {
 
 TEST_F(InterruptRestart, ExtensionFromTheFinalCheckpointEqualsTheUninterruptedRun) {
   const fs::path full = reference("full");
-  // The issue's failures: extended from its end (an output time), the run once stopped with a
+  // What once failed: extended from its end (an output time), the run once stopped with a
   // zero time step, or took a 1e-20 s step to an output time rounded differently.
   const fs::path part = dir_ / "part";
-  auto r = run_cli("run " + scene_.string() + " --out " + part.string() + " --threads 2 --set run.end_time=5e-6");
+  auto r = run_cli("run " + scene_.string() + " --out " + part.string() +
+                   " --threads 2 --set run.end_time=5e-6");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Snapshot first_end = read_checkpoint((part / "checkpoint.h5").string());
   EXPECT_EQ(first_end.f64.at("run/time")[0], 5e-6) << "the end time is reached exactly";
-  r = run_cli("run --restart " + (part / "checkpoint.h5").string() + " --threads 1 --set run.end_time=1.5e-5");
+  r = run_cli("run --restart " + (part / "checkpoint.h5").string() +
+              " --threads 1 --set run.end_time=1.5e-5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = run_cli("run --restart " + (part / "checkpoint.h5").string() + " --threads 2 --set run.end_time=2e-5");
+  r = run_cli("run --restart " + (part / "checkpoint.h5").string() +
+              " --threads 2 --set run.end_time=2e-5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_same_run(full, part);
   EXPECT_GT(band_rows(full), 10u);
@@ -163,12 +172,14 @@ TEST_F(InterruptRestart, ExtensionFromTheFinalCheckpointEqualsTheUninterruptedRu
   EXPECT_EQ(pvd_entries(part / "gas.pvd").size(), 5u);  // 0, 5, 10, 15, 20 us: no repeated time
 }
 
-TEST_F(InterruptRestart, MidRunCheckpointRestartedInAFolderWithLaterOutputsEqualsTheUninterruptedRun) {
+TEST_F(InterruptRestart,
+       MidRunCheckpointRestartedInAFolderWithLaterOutputsEqualsTheUninterruptedRun) {
   // Checkpoints every 3 us (not output times), and the one of t >= 9 us kept aside as a run
   // killed after it would have left it, while the folder goes on to the end.
   const std::string cadence = " --set output.checkpoint_interval=3e-6";
   const fs::path full = reference("full", cadence);
-  const Scene scene = parse_scene(kShockOverDust, scene_.string(), {"output.checkpoint_interval=3e-6"});
+  const Scene scene =
+      parse_scene(kShockOverDust, scene_.string(), {"output.checkpoint_interval=3e-6"});
   const fs::path killed = dir_ / "killed";
   RunOptions options;
   options.echo_log = false;
@@ -179,7 +190,8 @@ TEST_F(InterruptRestart, MidRunCheckpointRestartedInAFolderWithLaterOutputsEqual
     void on_start(const StateView&) override {}
     void on_output(const StateView&) override {}
     void on_step(const StateView& v) override {
-      if (kept || v.time < 1.1e-5) return;  // the checkpoint of the step at or after 9 us is on disk
+      if (kept || v.time < 1.1e-5)
+        return;  // the checkpoint of the step at or after 9 us is on disk
       fs::copy_file(folder / "checkpoint.h5", folder.parent_path() / "mid.h5");
       kept = true;
     }
@@ -197,13 +209,15 @@ TEST_F(InterruptRestart, MidRunCheckpointRestartedInAFolderWithLaterOutputsEqual
   const double t = mid.f64.at("run/time")[0];
   EXPECT_GE(t, 9e-6);
   EXPECT_LT(t, 1e-5) << "a checkpoint between two outputs";
-  EXPECT_TRUE(fs::exists(killed / "vtk" / "gas_000004.vtr")) << "outputs after the checkpoint are on disk";
+  EXPECT_TRUE(fs::exists(killed / "vtk" / "gas_000004.vtr"))
+      << "outputs after the checkpoint are on disk";
   const auto r = run_cli("run --restart " + (killed / "checkpoint.h5").string() + " --threads 1");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_same_run(full, killed);
 }
 
-TEST_F(InterruptRestart, SigintDuringAnOutputFinishesItCheckpointsAndTheRestartEqualsTheUninterruptedRun) {
+TEST_F(InterruptRestart,
+       SigintDuringAnOutputFinishesItCheckpointsAndTheRestartEqualsTheUninterruptedRun) {
   const fs::path full = reference("full");
   const Scene scene = parse_scene(kShockOverDust, scene_.string());
   const fs::path stopped = dir_ / "stopped";
@@ -227,7 +241,9 @@ TEST_F(InterruptRestart, SigintDuringAnOutputFinishesItCheckpointsAndTheRestartE
   EXPECT_EQ(read_checkpoint((stopped / "checkpoint.h5").string()).f64.at("run/time")[0], 1e-5);
   const std::string log = read_bytes(stopped / "run.log");
   EXPECT_NE(log.find("interrupted by SIGINT at t = 1.000000e-05 s"), std::string::npos) << log;
-  EXPECT_NE(log.find("continue with: dustlift run --restart " + (stopped / "checkpoint.h5").string()), std::string::npos);
+  EXPECT_NE(
+      log.find("continue with: dustlift run --restart " + (stopped / "checkpoint.h5").string()),
+      std::string::npos);
   const auto r = run_cli("run --restart " + (stopped / "checkpoint.h5").string() + " --threads 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_same_run(full, stopped);
@@ -253,13 +269,14 @@ TEST_F(InterruptRestart, SignalsFromOutsideAtAnyMomentThenRestartEqualTheUninter
       dup2(fd, 1);
       dup2(fd, 2);
       const std::string scene = scene_.string(), o = out.string();
-      execl(DUSTLIFT_BINARY, DUSTLIFT_BINARY, "run", scene.c_str(), "--out", o.c_str(), "--threads", "1", "--set",
-            "output.interval=1e-6", static_cast<char*>(nullptr));
+      execl(DUSTLIFT_BINARY, DUSTLIFT_BINARY, "run", scene.c_str(), "--out", o.c_str(), "--threads",
+            "1", "--set", "output.interval=1e-6", static_cast<char*>(nullptr));
       _exit(127);
     }
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (std::chrono::steady_clock::now() < deadline &&
-           (!fs::exists(out / "gas.pvd") || pvd_entries(out / "gas.pvd").size() < trial.after_frames))
+    while (
+        std::chrono::steady_clock::now() < deadline &&
+        (!fs::exists(out / "gas.pvd") || pvd_entries(out / "gas.pvd").size() < trial.after_frames))
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     kill(child, trial.signal);
     int status = 0;
@@ -267,13 +284,18 @@ TEST_F(InterruptRestart, SignalsFromOutsideAtAnyMomentThenRestartEqualTheUninter
     const std::string said = read_bytes(log);
     ASSERT_TRUE(WIFEXITED(status)) << said;
     EXPECT_EQ(WEXITSTATUS(status), kExitInterrupted) << said;
-    EXPECT_NE(said.find(std::string("interrupted by ") + (trial.signal == SIGINT ? "SIGINT" : "SIGTERM")),
-              std::string::npos) << said;
-    EXPECT_NE(said.find("continue with: dustlift run --restart " + (out / "checkpoint.h5").string()), std::string::npos)
+    EXPECT_NE(
+        said.find(std::string("interrupted by ") + (trial.signal == SIGINT ? "SIGINT" : "SIGTERM")),
+        std::string::npos)
+        << said;
+    EXPECT_NE(
+        said.find("continue with: dustlift run --restart " + (out / "checkpoint.h5").string()),
+        std::string::npos)
         << said;
     expect_consistent_collection(out, "gas");
     expect_consistent_collection(out, "parcels");
-    const double stopped_at = read_checkpoint((out / "checkpoint.h5").string()).f64.at("run/time")[0];
+    const double stopped_at =
+        read_checkpoint((out / "checkpoint.h5").string()).f64.at("run/time")[0];
     EXPECT_LT(stopped_at, 2e-5) << "the signal came before the end";
     std::printf("%s after %zu frames: stopped at t = %.6e s with %zu frames listed\n",
                 trial.signal == SIGINT ? "SIGINT" : "SIGTERM", trial.after_frames, stopped_at,
@@ -305,5 +327,6 @@ TEST_F(InterruptRestart, ASecondSignalEndsTheRunAtOnce) {
   waitpid(child, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
   EXPECT_EQ(WTERMSIG(status), SIGINT);
-  EXPECT_EQ(pvd_entries(out / "gas.pvd").size(), 1u) << "killed before the output of t = 5 us was listed";
+  EXPECT_EQ(pvd_entries(out / "gas.pvd").size(), 1u)
+      << "killed before the output of t = 5 us was listed";
 }

@@ -1,4 +1,4 @@
-// `mpirun -np 2 dustlift run SCENE` end to end (issue 12): the same files as one rank, a
+// `mpirun -np 2 dustlift run SCENE` end to end: the same files as one rank, a
 // checkpoint that continues on one rank, bad input reported once.
 #include <gtest/gtest.h>
 #include <vtkCellData.h>

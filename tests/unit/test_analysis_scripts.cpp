@@ -5,13 +5,13 @@
 
 #include <array>
 #include <cmath>
-#include <iterator>
-#include <map>
-#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <regex>
+#include <sstream>
 
 #include "insitu/band_average.hpp"
 #include "insitu/gas_cells.hpp"
@@ -25,7 +25,9 @@ namespace {
 namespace fs = std::filesystem;
 const char* kPython = "/usr/bin/python3";
 
-fs::path fresh_dir(const std::string& name) { return testing::scratch_dir("analysis_" + name); }
+fs::path fresh_dir(const std::string& name) {
+  return testing::scratch_dir("analysis_" + name);
+}
 
 /// Runs a command, returns (exit status, stdout + stderr).
 std::pair<int, std::string> run(const std::string& command) {
@@ -44,7 +46,8 @@ std::string script(const std::string& name) {
 class AnalysisScripts : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(kPython) || run(std::string(kPython) + " -c 'import numpy, matplotlib'").first != 0)
+    if (!fs::exists(kPython) ||
+        run(std::string(kPython) + " -c 'import numpy, matplotlib'").first != 0)
       FAIL() << "/usr/bin/python3 with numpy and matplotlib is needed (scripts/install-deps.sh: "
                 "python3-numpy python3-matplotlib)";
   }
@@ -78,11 +81,12 @@ TEST_F(AnalysisScripts, MakeFiguresFitsTheShockSpeedAndPlotsEverySeriesFamily) {
   const auto [status, output] = run(script("make_figures.py") + " " + dir.string());
   ASSERT_EQ(status, 0) << output;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(output, m, std::regex("shock speed \\(linear fit\\): ([0-9.eE+-]+) m/s")))
+  ASSERT_TRUE(
+      std::regex_search(output, m, std::regex("shock speed \\(linear fit\\): ([0-9.eE+-]+) m/s")))
       << output;
   EXPECT_NEAR(std::stod(m[1]), 500.9, 1e-6);
-  for (const char* png : {"shock_position.png", "surface_height.png", "forces_top.png",
-                          "magnus_inputs_top.png"}) {
+  for (const char* png :
+       {"shock_position.png", "surface_height.png", "forces_top.png", "magnus_inputs_top.png"}) {
     EXPECT_TRUE(fs::exists(dir / "figures" / png)) << png << "\n" << output;
     if (fs::exists(dir / "figures" / png)) {
       EXPECT_GT(fs::file_size(dir / "figures" / png), 10000u) << png;
@@ -114,9 +118,11 @@ TEST_F(AnalysisScripts, SodCompareReadsTheLastVtrAndMeasuresTheL1Error) {
   const auto [status, output] = run(script("sod_compare.py") + " " + dir.string());
   ASSERT_EQ(status, 0) << output;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(output, m, std::regex("density +L1 error ([0-9.eE+-]+)"))) << output;
+  ASSERT_TRUE(std::regex_search(output, m, std::regex("density +L1 error ([0-9.eE+-]+)")))
+      << output;
   EXPECT_NEAR(std::stod(m[1]), 0.01, 1e-12);
-  ASSERT_TRUE(std::regex_search(output, m, std::regex("pressure +L1 error ([0-9.eE+-]+)"))) << output;
+  ASSERT_TRUE(std::regex_search(output, m, std::regex("pressure +L1 error ([0-9.eE+-]+)")))
+      << output;
   EXPECT_LT(std::stod(m[1]), 1e-15);
   EXPECT_TRUE(fs::exists(dir / "figures" / "sod_compare.png"));
   fs::remove_all(dir);
@@ -132,7 +138,8 @@ TEST_F(AnalysisScripts, SummarizeRunPrintsTheReadmeLinesFromTheSeriesAndTheLastV
   for (int k = 0; k < 3; ++k) {
     const double t = k * 1e-5;
     shock.append_row(std::vector{t, 0.05 + 500.0 * t});
-    for (int i = 0; i <= 10; ++i) surface.append_row(std::vector{t, 0.01 * i, 1e-3 * (0.01 * i) + 1e-4 * k});
+    for (int i = 0; i <= 10; ++i)
+      surface.append_row(std::vector{t, 0.01 * i, 1e-3 * (0.01 * i) + 1e-4 * k});
   }
   sink.write(shock);
   sink.write(surface);
@@ -148,19 +155,22 @@ TEST_F(AnalysisScripts, SummarizeRunPrintsTheReadmeLinesFromTheSeriesAndTheLastV
   VtkSeriesFiles files(dir.string(), "gas", "vtr");
   write_gas_vtr(g, files.next_path(2e-5));
   files.commit(2e-5);
-  const auto [status, output] =
-      run(script("summarize_run.py") + " " + dir.string() + " --times 1e-5 --median-range 0.02 0.06 --station 0.05");
+  const auto [status, output] = run(script("summarize_run.py") + " " + dir.string() +
+                                    " --times 1e-5 --median-range 0.02 0.06 --station 0.05");
   ASSERT_EQ(status, 0) << output;
   EXPECT_NE(output.find("shock x at t = 0.01 ms: 55.0 mm"), std::string::npos) << output;
   // max at x = 100 mm: 0.1 mm + 0.1 mm; median over 20-60 mm at x = 40 mm: 0.04 + 0.1 mm;
   // at 50 mm: 0.05 + 0.1 mm.
-  EXPECT_NE(output.find("t = 0.01 ms: surface height max 0.20 mm (at x = 100 mm); median over 20-60 mm 0.14 mm; "
-                        "at x=50 mm 0.15 mm"),
-            std::string::npos)
+  EXPECT_NE(
+      output.find(
+          "t = 0.01 ms: surface height max 0.20 mm (at x = 100 mm); median over 20-60 mm 0.14 mm; "
+          "at x=50 mm 0.15 mm"),
+      std::string::npos)
       << output;
-  EXPECT_NE(output.find("last gas file gas_000000.vtr: cells 4, finite True, rho min 1.200, p min 1e+05, "
-                        "alpha_p max 0.300 (alpha_g min 0.700)"),
-            std::string::npos)
+  EXPECT_NE(
+      output.find("last gas file gas_000000.vtr: cells 4, finite True, rho min 1.200, p min 1e+05, "
+                  "alpha_p max 0.300 (alpha_g min 0.700)"),
+      std::string::npos)
       << output;
   fs::remove_all(dir);
 }
@@ -171,7 +181,7 @@ TEST_F(AnalysisScripts, SummarizeRunPrintsTheReadmeLinesFromTheSeriesAndTheLastV
 namespace dustlift {
 namespace {
 
-/// analysis/accuracy_cost.py --tiny (issue 11): the report's machinery on a two-by-two study.
+/// analysis/accuracy_cost.py --tiny: the report's machinery on a two-by-two study.
 /// Sod with first order and MUSCL-3 at 50 and 100 cells, and the suite's mini coupled scene at
 /// DEM Courant 0.1 / 0.2 and with Magnus on / off: a CSV row per setting with a finite error and
 /// wall time, the errors ordered as they must be, the report and its plots written.
@@ -184,9 +194,10 @@ TEST_F(AnalysisScripts, AccuracyCostReportsEverySettingWithAFiniteErrorAndWallTi
     std::ofstream(dir / "mini.toml") << text.substr(a, b - a);
   }
   const std::string build = fs::path(DUSTLIFT_BINARY).parent_path().string();
-  const auto [status, output] = run(script("accuracy_cost.py") + " --tiny --build " + build + " --coupled-scene " +
-                                    (dir / "mini.toml").string() + " --work " + (dir / "work").string() +
-                                    " --report " + (dir / "report" / "accuracy-cost.md").string());
+  const auto [status, output] =
+      run(script("accuracy_cost.py") + " --tiny --build " + build + " --coupled-scene " +
+          (dir / "mini.toml").string() + " --work " + (dir / "work").string() + " --report " +
+          (dir / "report" / "accuracy-cost.md").string());
   ASSERT_EQ(status, 0) << output;
   std::ifstream csv(dir / "report" / "accuracy-cost" / "accuracy_cost.csv");
   std::string line;

@@ -1,4 +1,4 @@
-// Tried as a shock-tube user would (issue 14): a pressure gauge as a probe series, gravity
+// Tried as a shock-tube user would: a pressure gauge as a probe series, gravity
 // along a vertical tube (-x), shock tracking when the bed fills the tube, and a parcel as
 // large as a cell computed with rounding.
 #include <gtest/gtest.h>
@@ -34,8 +34,10 @@ Simulation& run_with_outputs(Simulation& sim, const fs::path& dir) {
 
 TEST(ShockTubeUser, AProbeRecordsTheGaugeTraceOfItsCellEveryStep) {
   const auto dir = fresh_dir("probe_every_step");
-  Simulation sim(load_scene(kSod, {"grid.x.cells=200", "output.vtk=false",
-                                   "output.probes=[{ name = \"gauge\", x = 0.8, y = 0.001, fields = [\"p\", \"rho\"] }]"}));
+  Simulation sim(load_scene(
+      kSod,
+      {"grid.x.cells=200", "output.vtk=false",
+       "output.probes=[{ name = \"gauge\", x = 0.8, y = 0.001, fields = [\"p\", \"rho\"] }]"}));
   run_with_outputs(sim, dir);
   const SeriesTable probes = read_series_h5((dir / "series" / "series.h5").string(), "probes");
   ASSERT_EQ(probes.columns().size(), 3u);
@@ -50,7 +52,8 @@ TEST(ShockTubeUser, AProbeRecordsTheGaugeTraceOfItsCellEveryStep) {
   // The gauge sees the shock when the exact solution says it arrives (within two cells).
   const ExactRiemannSolver exact({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4);
   // Shock speed from mass conservation across it (gas at rest ahead).
-  const double speed = exact.star_density_right() * exact.star_velocity() / (exact.star_density_right() - 0.125);
+  const double speed =
+      exact.star_density_right() * exact.star_velocity() / (exact.star_density_right() - 0.125);
   const double arrival = (0.8 - 0.5) / speed;
   double seen = NAN;
   for (std::size_t r = 0; r < probes.rows() && std::isnan(seen); ++r)
@@ -62,8 +65,10 @@ TEST(ShockTubeUser, AProbeRecordsTheGaugeTraceOfItsCellEveryStep) {
 
 TEST(ShockTubeUser, AProbeCadenceSamplesAfterEachMultiple) {
   const auto dir = fresh_dir("probe_cadence");
-  Simulation sim(load_scene(kSod, {"grid.x.cells=100", "output.vtk=false", "output.probe_interval=0.01",
-                                   "output.probes=[{ name = \"a\", x = 0.3, y = 0.001 }, { name = \"b\", x = 0.7, y = 0.004 }]"}));
+  Simulation sim(
+      load_scene(kSod, {"grid.x.cells=100", "output.vtk=false", "output.probe_interval=0.01",
+                        "output.probes=[{ name = \"a\", x = 0.3, y = 0.001 }, { name = \"b\", x = "
+                        "0.7, y = 0.004 }]"}));
   run_with_outputs(sim, dir);
   const SeriesTable probes = read_series_h5((dir / "series" / "series.h5").string(), "probes");
   EXPECT_EQ(probes.columns().size(), 1u + 2u * 5u) << "default fields p, rho, u, v, T";
@@ -80,7 +85,8 @@ TEST(ShockTubeUser, GravityIsAVectorOnTheParcels) {
   // along x): symplectic Euler under a constant force gives v = g t.
   const auto dir = fresh_dir("gravity_vector");
   write_file(dir / "one.csv", "x,y,diameter\n0.001,0.001,100e-6\n");
-  const std::string scene = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/two_parcel_collision.toml";
+  const std::string scene =
+      std::string(DUSTLIFT_SOURCE_DIR) + "/cases/verification/two_parcel_collision.toml";
   Simulation sim(load_scene(scene, {"particles.layer.file=\"" + (dir / "one.csv").string() + "\"",
                                     "particles.gravity=[-9.81, 0.0]", "run.end_time=1e-4"}));
   ASSERT_EQ(sim.parcels()->size(), 1u);
@@ -90,9 +96,11 @@ TEST(ShockTubeUser, GravityIsAVectorOnTheParcels) {
   EXPECT_LT(sim.parcels()->x[0], 0.001);
   EXPECT_EQ(sim.parcels()->y[0], 0.001);
   const auto effects = sim.enabled_effects();
-  EXPECT_NE(std::find(effects.begin(), effects.end(), "gravity on the parcels: (-9.81, 0) m/s^2"), effects.end());
+  EXPECT_NE(std::find(effects.begin(), effects.end(), "gravity on the parcels: (-9.81, 0) m/s^2"),
+            effects.end());
   EXPECT_THROW(load_scene(scene, {"particles.gravity=[1.0]"}), SceneError);
-  EXPECT_THROW(load_scene(scene, {"particles.gravity=[-9.81, 0.0]", "particles.g=9.81"}), SceneError);
+  EXPECT_THROW(load_scene(scene, {"particles.gravity=[-9.81, 0.0]", "particles.g=9.81"}),
+               SceneError);
   fs::remove_all(dir);
 }
 
@@ -100,30 +108,40 @@ TEST(ShockTubeUser, TheShockIsTrackedWhenTheBedFillsTheTube) {
   // A bed of beads across the whole height of the tube, the shock arriving from the left.
   const auto dir = fresh_dir("bed_fills_tube");
   const std::string quick = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml";
-  const auto r = run_cli("run " + quick + " --out " + (dir / "o").string() +
-                         " --threads 1 --set grid.x.start=-0.01 --set grid.x.end=0.01 --set grid.x.cells_below=4"
-                         " --set grid.y.end=0.002 --set grid.y.uniform_end=0.002 --set grid.y.cells_above=0"
-                         " --set particles.layer.y_max=0.002 --set particles.layer.volume_fraction=0.3"
-                         " --set particles.layer.x_max=0.01 --set run.end_time=1.5e-5 --set output.interval=5e-6"
-                         " --set output.vtk=false");
+  const auto r = run_cli(
+      "run " + quick + " --out " + (dir / "o").string() +
+      " --threads 1 --set grid.x.start=-0.01 --set grid.x.end=0.01 --set grid.x.cells_below=4"
+      " --set grid.y.end=0.002 --set grid.y.uniform_end=0.002 --set grid.y.cells_above=0"
+      " --set particles.layer.y_max=0.002 --set particles.layer.volume_fraction=0.3"
+      " --set particles.layer.x_max=0.01 --set run.end_time=1.5e-5 --set output.interval=5e-6"
+      " --set output.vtk=false");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const SeriesTable shock = read_series_h5((dir / "o" / "series" / "series.h5").string(), "shock_position");
+  const SeriesTable shock =
+      read_series_h5((dir / "o" / "series" / "series.h5").string(), "shock_position");
   ASSERT_EQ(shock.rows(), 4u);
-  for (std::size_t k = 0; k < shock.rows(); ++k) EXPECT_TRUE(std::isfinite(shock.column(1)[k])) << "row " << k;
+  for (std::size_t k = 0; k < shock.rows(); ++k)
+    EXPECT_TRUE(std::isfinite(shock.column(1)[k])) << "row " << k;
   EXPECT_GT(shock.column(1).back(), shock.column(1).front()) << "it moves on";
   fs::remove_all(dir);
 }
 
 TEST(ShockTubeUser, AParcelAsLargeAsACellFitsDespiteRounding) {
   // 2.0 m / 1000 cells computes as a hair less than 0.002 m.
-  const std::string grid = " --set \"grid.x={ start = 0.0, end = 2.0, cells = 1000 }\" --set \"grid.y={ start = 0.0, end = 0.02, cells = 10 }\""
-                           " --set particles.layer.x_max=2.0 --set particles.layer.y_min=0.0 --set particles.layer.y_max=0.01"
-                           " --set particles.layer.volume_fraction=0.3";
-  const std::string scene = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml --set initial.position=0.5 --set run.end_time=1e-6";
+  const std::string grid =
+      " --set \"grid.x={ start = 0.0, end = 2.0, cells = 1000 }\" --set \"grid.y={ start = 0.0, "
+      "end = 0.02, cells = 10 }\""
+      " --set particles.layer.x_max=2.0 --set particles.layer.y_min=0.0 --set "
+      "particles.layer.y_max=0.01"
+      " --set particles.layer.volume_fraction=0.3";
+  const std::string scene =
+      std::string(DUSTLIFT_SOURCE_DIR) +
+      "/cases/quickstart.toml --set initial.position=0.5 --set run.end_time=1e-6";
   auto r = run_cli("info " + scene + grid + " --set particles.diameter=0.002");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   r = run_cli("info " + scene + grid + " --set particles.diameter=0.0020001");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("parcels of 0.0020001 m are larger than the smallest grid cell (0.002 m)"), std::string::npos)
+  EXPECT_NE(
+      r.output.find("parcels of 0.0020001 m are larger than the smallest grid cell (0.002 m)"),
+      std::string::npos)
       << r.output;
 }

@@ -1,4 +1,4 @@
-// The x-slab decomposition (issue 12) without MPI: where the cuts go, the slab's axis, and
+// The x-slab decomposition without MPI: where the cuts go, the slab's axis, and
 // the copies between a slab's fields and the whole grid's.
 #include <gtest/gtest.h>
 

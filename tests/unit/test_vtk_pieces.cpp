@@ -1,4 +1,4 @@
-// Datasets in pieces (a decomposed run, issue 12): the .pvtr/.pvtp summaries join the ranks'
+// Datasets in pieces (a decomposed run): the .pvtr/.pvtp summaries join the ranks'
 // pieces into what one file holds when VTK's parallel XML readers load them; a slab's edge
 // columns get the whole grid's vorticity from its ghost columns; a rank's own parcels are
 // its table without the ghosts; a continued run removes the summaries and pieces written

@@ -1,4 +1,4 @@
-// ParaView Catalyst in situ, end to end (issue 10, docs/catalyst.md): a short coupled run
+// ParaView Catalyst in situ, end to end (docs/catalyst.md): a short coupled run
 // with the shipped extract and render scripts; the extracts must hold the same arrays as the
 // solver's own .vtr/.vtp of the same step, the PNGs must show something and change; a script
 // that fails must not stop the run nor touch its other outputs; bad [insitu.catalyst] input

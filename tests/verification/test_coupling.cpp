@@ -1,4 +1,4 @@
-// Gas-particle coupling (issue: paper eqs. 2-3 sources, 5-16): single-parcel relaxation against
+// Gas-particle coupling (paper eqs. 2-3 sources, 5-16): single-parcel relaxation against
 // reference integrations, conservation of the exchange terms step by step, mass conservation,
 // and the measured drift that the non-conservative alpha_g grad p and p d(alpha_g)/dt terms allow.
 #include <gtest/gtest.h>
@@ -40,7 +40,8 @@ bottom = "slip_wall"
 top = "slip_wall"
 [initial]
 kind = "uniform"
-state = )" + gas_state + R"(
+state = )" +
+         gas_state + R"(
 [particles]
 real_per_parcel = 1.0
 [particles.layer]
@@ -65,9 +66,10 @@ TEST(Coupling, SingleParcelDragRelaxationMatchesReferenceOde) {
   // particle from rest, drag only with Parmar xi_1 and xi_2 = 1: v(100 us) = 29.3039 m/s,
   // v(500 us) = 95.8161 m/s (RK4 reference). One-way coupling keeps the gas frozen.
   const Scene scene = parse_scene(
-      single_parcel_scene("{ p = 227506.0, T = 384.199, u = 216.154 }",
-                          "two_way = false\nmagnus = false\npressure_force = false\nrotation_torque = false\n"
-                          "heat_transfer = false\nvolume_fraction_correction = \"none\"\n"),
+      single_parcel_scene(
+          "{ p = 227506.0, T = 384.199, u = 216.154 }",
+          "two_way = false\nmagnus = false\npressure_force = false\nrotation_torque = false\n"
+          "heat_transfer = false\nvolume_fraction_correction = \"none\"\n"),
       "single.toml");
   Simulation sim(scene);
   ASSERT_NE(sim.parcels(), nullptr);
@@ -171,13 +173,15 @@ TEST(Coupling, ClosedBoxConservesMassAndExchangesExactly) {
   ASSERT_GT(ps.size(), 300u);
   // Agitate the parcels reproducibly (splitmix-like hash of the index).
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0), b = std::cos(78.233 * static_cast<double>(k));
+    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0),
+                 b = std::cos(78.233 * static_cast<double>(k));
     ps.vx[k] = 2.0 * a;
     ps.vy[k] = 2.0 * b;
     ps.omega[k] = 2000.0 * a * b;
   }
   const Totals start = totals(sim);
-  double max_momentum_mismatch = 0.0, max_energy_mismatch = 0.0, impulse_scale = 0.0, energy_scale = 0.0;
+  double max_momentum_mismatch = 0.0, max_energy_mismatch = 0.0, impulse_scale = 0.0,
+         energy_scale = 0.0;
   double sum_exchange_px = 0.0;
   for (int step = 0; step < 1000; ++step) {
     const GasTotals before = sim.gas().totals();
@@ -187,11 +191,11 @@ TEST(Coupling, ClosedBoxConservesMassAndExchangesExactly) {
     // What the gas gives through f_p, s_p, q_p equals what the parcels receive, step by step.
     const double scale_p = std::abs(e.parcel_impulse_x) + std::abs(e.parcel_impulse_y) + 1e-300;
     const double scale_e = std::abs(e.parcel_work) + std::abs(e.parcel_heat) + 1e-300;
-    max_momentum_mismatch = std::max({max_momentum_mismatch,
-                                      std::abs(e.gas_impulse_x - e.parcel_impulse_x) / scale_p,
-                                      std::abs(e.gas_impulse_y - e.parcel_impulse_y) / scale_p});
-    max_energy_mismatch = std::max(max_energy_mismatch,
-                                   std::abs(e.gas_energy - (e.parcel_work + e.parcel_heat)) / scale_e);
+    max_momentum_mismatch =
+        std::max({max_momentum_mismatch, std::abs(e.gas_impulse_x - e.parcel_impulse_x) / scale_p,
+                  std::abs(e.gas_impulse_y - e.parcel_impulse_y) / scale_p});
+    max_energy_mismatch = std::max(
+        max_energy_mismatch, std::abs(e.gas_energy - (e.parcel_work + e.parcel_heat)) / scale_e);
     impulse_scale += scale_p;
     energy_scale += scale_e;
     sum_exchange_px += e.parcel_impulse_x;
@@ -206,9 +210,12 @@ TEST(Coupling, ClosedBoxConservesMassAndExchangesExactly) {
   const double drift_e = std::abs(end.energy - start.energy) / energy_scale;
   std::printf("exchange mismatch: momentum %.2e, energy %.2e (relative, max over steps)\n",
               max_momentum_mismatch, max_energy_mismatch);
-  std::printf("drift over 1000 steps: x momentum %.3e of the exchanged impulse, energy %.3e of the exchanged energy\n",
-              drift_px, drift_e);
-  std::printf("exchanged: impulse %.3e N s/m, energy %.3e J/m over t = %.3e s\n", impulse_scale, energy_scale, sim.time());
+  std::printf(
+      "drift over 1000 steps: x momentum %.3e of the exchanged impulse, energy %.3e of the "
+      "exchanged energy\n",
+      drift_px, drift_e);
+  std::printf("exchanged: impulse %.3e N s/m, energy %.3e J/m over t = %.3e s\n", impulse_scale,
+              energy_scale, sim.time());
   EXPECT_GT(impulse_scale, 0.0);
   EXPECT_LT(drift_px, 0.05);
   EXPECT_LT(drift_e, 0.05);
@@ -222,7 +229,8 @@ TEST(Coupling, SampledRotationAndPressureForceEqualFullGridDerivatives) {
   Simulation sim(scene);
   ParcelSystem& ps = *sim.parcels();
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0), b = std::cos(78.233 * static_cast<double>(k));
+    const double a = std::sin(12.9898 * static_cast<double>(k) + 1.0),
+                 b = std::cos(78.233 * static_cast<double>(k));
     ps.vx[k] = 2.0 * a;
     ps.vy[k] = 2.0 * b;
     ps.omega[k] = 2000.0 * a * b;
@@ -239,7 +247,8 @@ TEST(Coupling, SampledRotationAndPressureForceEqualFullGridDerivatives) {
   Field2D vorticity(grid), dpdx(grid), dpdy(grid);
   vorticity_z_rows(grid, *g.u, *g.v, 0, grid.ny(), vorticity);
   gradient_rows(grid, *g.p, 0, grid.ny(), dpdx, dpdy);
-  for (Field2D* f : {&vorticity, &dpdx, &dpdy}) {  // edge values into the ghosts, as the coupling does
+  for (Field2D* f :
+       {&vorticity, &dpdx, &dpdy}) {  // edge values into the ghosts, as the coupling does
     for (int j = 0; j < grid.ny(); ++j) {
       (*f)(-1, j) = (*f)(0, j);
       (*f)(grid.nx(), j) = (*f)(grid.nx() - 1, j);
@@ -266,7 +275,8 @@ TEST(Coupling, SampledRotationAndPressureForceEqualFullGridDerivatives) {
     const auto [x, y] = position_by_id.at(ps.id[k]);
     const InterpolationStencil st = interpolation_stencil(grid, x, y);
     const Vec2 force = aero::pressure_force(d, {st.apply(dpdx), st.apply(dpdy)});
-    if ((*rotation)[k] != 0.5 * st.apply(vorticity) || ps.pressure_fx[k] != force.x || ps.pressure_fy[k] != force.y) {
+    if ((*rotation)[k] != 0.5 * st.apply(vorticity) || ps.pressure_fx[k] != force.x ||
+        ps.pressure_fy[k] != force.y) {
       ++mismatches;
     }
   }
@@ -281,10 +291,12 @@ TEST(Coupling, QuiescentGasOverRestingLayerStaysAtRest) {
   const GasPrimitives g = sim.gas().primitives();
   double umax = 0.0;
   for (int j = 0; j < sim.grid().ny(); ++j)
-    for (int i = 0; i < sim.grid().nx(); ++i) umax = std::max({umax, std::abs((*g.u)(i, j)), std::abs((*g.v)(i, j))});
+    for (int i = 0; i < sim.grid().nx(); ++i)
+      umax = std::max({umax, std::abs((*g.u)(i, j)), std::abs((*g.v)(i, j))});
   double vmax = 0.0;
   const ParcelSystem& ps = *sim.parcels();
-  for (std::size_t k = 0; k < ps.size(); ++k) vmax = std::max({vmax, std::abs(ps.vx[k]), std::abs(ps.vy[k])});
+  for (std::size_t k = 0; k < ps.size(); ++k)
+    vmax = std::max({vmax, std::abs(ps.vx[k]), std::abs(ps.vy[k])});
   EXPECT_LT(umax, 1e-9);
   EXPECT_LT(vmax, 1e-9);
 }

@@ -27,7 +27,8 @@ const TubeCase kLax{"Lax", {0.445, 0.698, 3.528}, {0.5, 0.0, 0.571}, 0.14};
 std::vector<double> run_tube(const TubeCase& tc, int n, char axis, Reconstruction rec,
                              Limiter lim = Limiter::Minmod) {
   const bool along_x = axis == 'x';
-  const Grid2D grid = along_x ? uniform_grid(n, 2, 0.0, 1.0, 0.0, 2.0 / n) : uniform_grid(2, n, 0.0, 2.0 / n, 0.0, 1.0);
+  const Grid2D grid = along_x ? uniform_grid(n, 2, 0.0, 1.0, 0.0, 2.0 / n)
+                              : uniform_grid(2, n, 0.0, 2.0 / n, 0.0, 1.0);
   GasConfig cfg = ideal_gas_config();
   cfg.scheme.reconstruction = rec;
   cfg.scheme.limiter = lim;
@@ -49,7 +50,9 @@ std::vector<double> run_tube(const TubeCase& tc, int n, char axis, Reconstructio
   gas.initialize(ic);
   run_until(gas, tc.end_time);
   std::vector<double> rho(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) rho[static_cast<std::size_t>(k)] = along_x ? (*gas.primitives().rho)(k, 1) : (*gas.primitives().rho)(1, k);
+  for (int k = 0; k < n; ++k)
+    rho[static_cast<std::size_t>(k)] =
+        along_x ? (*gas.primitives().rho)(k, 1) : (*gas.primitives().rho)(1, k);
   return rho;
 }
 
@@ -67,8 +70,8 @@ double density_l1_error(const TubeCase& tc, const std::vector<double>& rho) {
 std::vector<double> convergence(const TubeCase& tc, Reconstruction rec, const char* label) {
   std::vector<double> errors;
   for (int n : {100, 200, 400}) errors.push_back(density_l1_error(tc, run_tube(tc, n, 'x', rec)));
-  std::printf("%s %s: density L1 = %.4e (100) %.4e (200) %.4e (400); orders %.2f %.2f\n", tc.name, label,
-              errors[0], errors[1], errors[2], observed_order(errors[0], errors[1]),
+  std::printf("%s %s: density L1 = %.4e (100) %.4e (200) %.4e (400); orders %.2f %.2f\n", tc.name,
+              label, errors[0], errors[1], errors[2], observed_order(errors[0], errors[1]),
               observed_order(errors[1], errors[2]));
   return errors;
 }
@@ -84,7 +87,7 @@ TEST(ShockTube, SodConvergesAndMeetsTheAccuracyRequirement) {
     EXPECT_LT((*e)[2], (*e)[1]);
   }
   EXPECT_LT(m3[2], first[2]);  // higher order is more accurate at equal resolution
-  EXPECT_LE(m3[2], 2e-3);      // issue requirement: Sod MUSCL-3, 400 cells
+  EXPECT_LE(m3[2], 2e-3);      // the verification ladder's bound: Sod MUSCL-3, 400 cells
   // Discontinuities limit L1 convergence to order ~ 1 (contact: ~ 0.5 at first order).
   EXPECT_GT(observed_order(m3[1], m3[2]), 0.6);
 }
@@ -96,7 +99,9 @@ TEST(ShockTube, LaxConverges) {
   EXPECT_GT(observed_order(m3[1], m3[2]), 0.6);
   const std::vector<double> va = [&] {
     std::vector<double> e;
-    for (int n : {100, 200, 400}) e.push_back(density_l1_error(kLax, run_tube(kLax, n, 'x', Reconstruction::Muscl3, Limiter::VanAlbada)));
+    for (int n : {100, 200, 400})
+      e.push_back(density_l1_error(
+          kLax, run_tube(kLax, n, 'x', Reconstruction::Muscl3, Limiter::VanAlbada)));
     return e;
   }();
   std::printf("Lax MUSCL-3 van Albada: density L1 = %.4e %.4e %.4e\n", va[0], va[1], va[2]);
@@ -111,7 +116,8 @@ TEST(ShockTube, Toro123NearVacuumStaysPositive) {
   // converges to the exact solution.
   const TubeCase t123{"123", {1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 0.15};
   std::vector<double> e;
-  for (int n : {100, 200, 400}) e.push_back(density_l1_error(t123, run_tube(t123, n, 'x', Reconstruction::Muscl3)));
+  for (int n : {100, 200, 400})
+    e.push_back(density_l1_error(t123, run_tube(t123, n, 'x', Reconstruction::Muscl3)));
   std::printf("Toro 123: density L1 = %.4e %.4e %.4e; orders %.2f %.2f\n", e[0], e[1], e[2],
               observed_order(e[0], e[1]), observed_order(e[1], e[2]));
   EXPECT_LT(e[1], e[0]);
