@@ -21,8 +21,8 @@ using SoundSpeedFunction = std::function<double(const StateView&, int, int)>;
 std::unique_ptr<Observer> make_vtk_gas_writer(SoundSpeedFunction sound_speed);
 
 struct SurfaceHeightOptions {
-  double threshold = 1e-4;              ///< alpha_p level of the surface (paper section 3.2)
-  std::vector<double> stations_x;       ///< m; x of the station columns (may be empty)
+  double threshold = 1e-4;         ///< alpha_p level of the surface (paper section 3.2)
+  std::vector<double> stations_x;  ///< m; x of the station columns (may be empty)
 };
 /// Dust-surface height h(x): series surface_height (time_s, x_m, height_m; columns with no
 /// particles skipped) and surface_height_stations (time_s, one height per station, NaN
@@ -46,10 +46,10 @@ using ParcelArraysOf = std::function<ParcelArraysView(const StateView&)>;
 std::unique_ptr<Observer> make_vtk_parcel_writer(ParcelArraysOf parcels_of);
 
 struct BandForceOptions {
-  std::vector<Band> bands;            ///< one series forces_<name> per band
-  BandAverageOptions averaging;       ///< tau bins and the contact-force window
-  ShockPositionOptions shock;         ///< how the shock arrival is detected
-  bool sample_every_step = true;      ///< false: sample at outputs only
+  std::vector<Band> bands;        ///< one series forces_<name> per band
+  BandAverageOptions averaging;   ///< tau bins and the contact-force window
+  ShockPositionOptions shock;     ///< how the shock arrival is detected
+  bool sample_every_step = true;  ///< false: sample at outputs only
 };
 /// Band-averaged force histories (series forces_<band>): at every step (or output) finds
 /// the shock position from the pressure field and records it (ShockTrajectory); a band
@@ -68,6 +68,11 @@ struct ProbeOptions {
   double interval = 0.0;  ///< s of simulated time; 0: every step
 };
 std::unique_ptr<Observer> make_probe_observer(ProbeOptions options);
+
+/// Series parcel_fronts: time_s, x_min_m, x_p01_m, x_p99_m, x_max_m at each output: the
+/// outermost parcels in x and the x below which 1 % and 99 % of the real particles lie
+/// (parcel_fronts.hpp). A particle curtain's upstream and downstream fronts.
+std::unique_ptr<Observer> make_parcel_fronts_observer();
 
 /// Window of the near-layer field series (paper Fig. 13).
 struct NearLayerOptions {

@@ -1,5 +1,6 @@
 #include "solver/coupling/coupling_models.hpp"
 
+#include "solver/coupling/models/added_mass.hpp"
 #include "solver/coupling/models/drag.hpp"
 #include "solver/coupling/models/heat_transfer.hpp"
 #include "solver/coupling/models/magnus.hpp"
@@ -12,6 +13,7 @@ CouplingModels::CouplingModels(const CouplingConfig& c) {
   if (c.drag) models_.push_back(std::make_unique<DragModel>(c));
   if (c.magnus) models_.push_back(std::make_unique<MagnusModel>(c));
   if (c.pressure_force) models_.push_back(std::make_unique<PressureForceModel>());
+  if (c.added_mass) models_.push_back(std::make_unique<AddedMassModel>(c));
   if (c.rotation_torque) models_.push_back(std::make_unique<RotationTorqueModel>(c));
   if (c.heat_transfer) models_.push_back(std::make_unique<HeatTransferModel>());
   for (const auto& m : models_) {

@@ -87,7 +87,9 @@ void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j
   double ymin = grid_.y().end(), ymax = grid_.y().start();
   const std::size_t n = parcels.size();
   const double* y = parcels.y.data();
+  // clang-format off
 #pragma omp parallel for schedule(static) reduction(min : ymin) reduction(max : ymax) if (n >= kParallelMinimum)
+  // clang-format on
   for (std::size_t i = 0; i < n; ++i) {
     ymin = std::min(ymin, y[i]);
     ymax = std::max(ymax, y[i]);
@@ -132,9 +134,25 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   col_.work = attach("exchange_work", "J");
   col_.heat = attach("exchange_heat", "J");
   col_.relative_rotation = carried("relative_rotation", "rad/s");
+  const ForceParts& parts = models_.writes();
+  if (parts.added_mass) {
+    col_.added_mass = attach("added_mass", "kg");
+    col_.added_mass_gas_x = attach("added_mass_gas_x", "N");
+    col_.added_mass_gas_y = attach("added_mass_gas_y", "N");
+    col_.inv_total_mass = attach("inv_total_mass", "1/kg");
+    // A force part like the table's: checkpointed (resting parcels keep it), written.
+    auto force_part = [&](const char* name, int component) {
+      ParcelColumnSpec spec{name, "N", true, true};
+      spec.written_as = "force_added_mass";
+      spec.component = component;
+      spec.part = ForcePart::AddedMass;
+      return parcels.attach_column(std::move(spec));
+    };
+    col_.added_mass_fx = force_part("added_mass_fx", 0);
+    col_.added_mass_fy = force_part("added_mass_fy", 1);
+  }
   // The sub-step effects are what the models write.
   GasForcing forcing;
-  const ForceParts& parts = models_.writes();
   forcing.drag = parts.drag;
   forcing.magnus = parts.magnus;
   forcing.pressure = parts.pressure;
@@ -153,6 +171,13 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   forcing.work = col_.work;
   forcing.heat_in = col_.heat;
   forcing.relative_rotation = col_.relative_rotation;
+  forcing.added_mass = parts.added_mass;
+  forcing.added_mass_coefficient = col_.added_mass;
+  forcing.added_mass_gas_x = col_.added_mass_gas_x;
+  forcing.added_mass_gas_y = col_.added_mass_gas_y;
+  forcing.inv_total_mass = col_.inv_total_mass;
+  forcing.added_mass_fx = col_.added_mass_fx;
+  forcing.added_mass_fy = col_.added_mass_fy;
   parcels.set_gas_forcing(forcing);
   parcels.store_parts_on_last_substep_only(true);
   parcels.set_stepped_column(col_.stepped);

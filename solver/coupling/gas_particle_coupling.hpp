@@ -133,6 +133,9 @@ class GasParticleCoupling {
     ParcelColumn relative_rotation;
     ParcelColumn rest_steps;  ///< consecutive steps begun exactly at rest in resting gas
     ParcelColumn stepped;     ///< 1: stepped this CFD step (ParcelSystem::set_stepped_column)
+    /// With the added-mass force: m_a, C_M V_p (-grad p), 1 / (m + m_a) and the force part.
+    ParcelColumn added_mass, added_mass_gas_x, added_mass_gas_y, inv_total_mass;
+    ParcelColumn added_mass_fx, added_mass_fy;
   };
   /// The rows holding parcels (of every rank on a slab: collective), with two rows of margin
   /// for the interpolation quad and the 3-point derivative stencils.

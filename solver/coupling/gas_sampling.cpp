@@ -29,7 +29,9 @@ void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j
   const int last_column = std::min(i1, nx - 1);  // columns up to i1 reach cells below i1
   const std::size_t width = static_cast<std::size_t>(nx) + 2;
   near_scratch_.resize(width * static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+  // clang-format off
 #pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1 - j0) * i1 >= kParallelMinimum)
+  // clang-format on
   for (int j = j0; j < j1; ++j) {
     // near[i + 1]: column i holds parcels in one of the rows j-1, j, j+1.
     std::uint8_t* near =
@@ -80,7 +82,9 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
     // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
     const int nx = grid_.nx();
+  // clang-format off
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
+  // clang-format on
     for (int j = 0; j < grid_.ny(); ++j) {
       if (vort) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
       if (pressure) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
@@ -108,6 +112,11 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   double* M = ps.column(col_.magnus).data();
   double* kappa = ps.column(col_.torque).data();
   double* H = ps.column(col_.heat_coef).data();
+  const bool added_mass = col_.added_mass.valid();
+  double* m_a = added_mass ? ps.column(col_.added_mass).data() : nullptr;
+  double* am_gx = added_mass ? ps.column(col_.added_mass_gas_x).data() : nullptr;
+  double* am_gy = added_mass ? ps.column(col_.added_mass_gas_y).data() : nullptr;
+  double* inv_mt = added_mass ? ps.column(col_.inv_total_mass).data() : nullptr;
   const double d = dem_cfg_.particle_diameter;
   // Batches of parcels: each is sampled, then every model runs over the whole batch (one
   // virtual call per model and batch). Dynamic scheduling: parcels in disturbed gas cost
@@ -162,7 +171,8 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       s.vorticity = value[kVorticity][q];
       s.dpdx = value[kDpdx][q];
       s.dpdy = value[kDpdy][q];
-      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d};
+      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d,
+                                    added_mass ? 1.0 / ps.inv_mass_real[k] : 0.0};
       const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
       in[q].slip = std::sqrt(sx * sx + sy * sy);
       in[q].re = s.rho * in[q].slip * d / s.mu;
@@ -183,6 +193,12 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       H_raw[k] = H[k] = c.heat;
       ps.pressure_fx[k] = c.pressure_fx;
       ps.pressure_fy[k] = c.pressure_fy;
+      if (added_mass) {
+        m_a[k] = c.added_mass;
+        am_gx[k] = c.added_mass_fx;
+        am_gy[k] = c.added_mass_fy;
+        inv_mt[k] = c.inv_total_mass;
+      }
     }
   }
   // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).

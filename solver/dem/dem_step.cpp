@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "solver/coupling/models/added_mass.hpp"
 #include "solver/coupling/models/drag.hpp"
 #include "solver/coupling/models/heat_transfer.hpp"
 #include "solver/coupling/models/magnus.hpp"
@@ -199,12 +200,15 @@ struct ForcedArrays {
       *pressure_fy;
   double *impulse_x, *impulse_y, *work, *heat;
   double *drag_fx, *drag_fy, *magnus_fx, *magnus_fy, *fluid_torque, *heat_rate, *relative_rotation;
+  const double *added_mass, *added_mass_gas_x, *added_mass_gas_y,
+      *inv_total_mass;  ///< null when off
+  double *added_mass_fx, *added_mass_fy;
 };
 
 /// Symplectic Euler under contacts and the frozen-gas forcing (GasForcing): each effect's
 /// sub-step law is its coupling model's (solver/coupling/models/), and the effects that are
 /// off are compiled out. Store: write the force parts for the observers.
-template <bool Drag, bool Magnus, bool Pressure, bool Torque, bool Heat, bool Store>
+template <bool Drag, bool Magnus, bool Pressure, bool AddedMass, bool Torque, bool Heat, bool Store>
 double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, double gx,
                                double gy, double inv_c) {
   // Local restrict copies (through the struct the compiler would assume aliasing).
@@ -243,6 +247,12 @@ double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, 
   double* __restrict out_tq = a.fluid_torque;
   double* __restrict out_q = a.heat_rate;
   double* __restrict out_wr = a.relative_rotation;
+  const double* __restrict madd = a.added_mass;
+  const double* __restrict amgx = a.added_mass_gas_x;
+  const double* __restrict amgy = a.added_mass_gas_y;
+  const double* __restrict imt = a.inv_total_mass;
+  double* __restrict out_amx = a.added_mass_fx;
+  double* __restrict out_amy = a.added_mass_fy;
   double max_d2 = 0.0;
 #pragma omp parallel for simd schedule(static) reduction(max : max_d2) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
@@ -266,11 +276,31 @@ double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, 
       fx += pfx[i];
       fy += pfy[i];
     }
-    const double vxn = vx0 + dt * ((cfx[i] + fx) * im[i] + gx);
-    const double vyn = vy0 + dt * ((cfy[i] + fy) * im[i] + gy);
+    double vxn, vyn;
+    double amx = 0.0, amy = 0.0;  // the added-mass force, exchanged with the gas
+    if constexpr (AddedMass) {
+      // (m + m_a) dv/dt = F + F_g + m g (AddedMassModel).
+      const Vec2 gas_part{amgx[i], amgy[i]};
+      const Vec2 acc = AddedMassModel::acceleration({cfx[i] + fx, cfy[i] + fy}, gas_part, imt[i]);
+      const double weight_share = imt[i] / im[i];  // m / (m + m_a)
+      const Vec2 a_total{acc.x + gx * weight_share, acc.y + gy * weight_share};
+      const Vec2 f_am = AddedMassModel::force(gas_part, madd[i], a_total);
+      amx = f_am.x;
+      amy = f_am.y;
+      vxn = vx0 + dt * a_total.x;
+      vyn = vy0 + dt * a_total.y;
+    } else {
+      vxn = vx0 + dt * ((cfx[i] + fx) * im[i] + gx);
+      vyn = vy0 + dt * ((cfy[i] + fy) * im[i] + gy);
+    }
     pvx[i] = vxn;
     pvy[i] = vyn;
-    if constexpr (Drag || Magnus) {
+    if constexpr (AddedMass) {
+      const double jxs = ex + amx, jys = ey + amy;
+      jx[i] += jxs * dt;
+      jy[i] += jys * dt;
+      work[i] += (jxs * 0.5 * (vx0 + vxn) + jys * 0.5 * (vy0 + vyn)) * dt;
+    } else if constexpr (Drag || Magnus) {
       jx[i] += ex * dt;
       jy[i] += ey * dt;
       work[i] += (ex * 0.5 * (vx0 + vxn) + ey * 0.5 * (vy0 + vyn)) * dt;
@@ -299,6 +329,10 @@ double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, 
       out_tq[i] = fluid_tq;
       out_q[i] = q;
       out_wr[i] = wrel;
+      if constexpr (AddedMass) {
+        out_amx[i] = amx;
+        out_amy[i] = amy;
+      }
     }
     const double ddx = xn - xb[i], ddy = yn - yb[i];
     max_d2 = std::max(max_d2, (ddx * ddx + ddy * ddy) * is2[i]);
@@ -370,13 +404,20 @@ void ParcelSystem::integrate_forced(double dt, bool store_parts) {
                        magnus_fy.data(),
                        fluid_torque.data(),
                        heat_rate.data(),
-                       col(f.relative_rotation)};
+                       col(f.relative_rotation),
+                       f.added_mass ? col(f.added_mass_coefficient) : nullptr,
+                       f.added_mass ? col(f.added_mass_gas_x) : nullptr,
+                       f.added_mass ? col(f.added_mass_gas_y) : nullptr,
+                       f.added_mass ? col(f.inv_total_mass) : nullptr,
+                       f.added_mass ? col(f.added_mass_fx) : nullptr,
+                       f.added_mass ? col(f.added_mass_fy) : nullptr};
   const std::size_t n = stepped_count();
   const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity;
-  const std::array<bool, 6> flags{f.drag, f.magnus, f.pressure, f.torque, f.heat, store_parts};
+  const std::array<bool, 7> flags{f.drag,   f.magnus, f.pressure, f.added_mass,
+                                  f.torque, f.heat,   store_parts};
   const double max_d2 =
-      dispatch_flags(flags, [&]<bool D, bool M, bool P, bool T, bool H, bool S>() {
-        return integrate_forced_kernel<D, M, P, T, H, S>(a, n, dt, gx, gy, inv_c);
+      dispatch_flags(flags, [&]<bool D, bool M, bool P, bool A, bool T, bool H, bool S>() {
+        return integrate_forced_kernel<D, M, P, A, T, H, S>(a, n, dt, gx, gy, inv_c);
       });
   if (max_d2 > 1.0) needs_rebuild_ = true;
 }

@@ -30,6 +30,15 @@ void ParcelSystem::set_gas_forcing(const GasForcing& f) {
           "ParcelSystem::set_gas_forcing: a forcing column is not attached");
     }
   }
+  if (f.added_mass) {
+    for (ParcelColumn c : {f.added_mass_coefficient, f.added_mass_gas_x, f.added_mass_gas_y,
+                           f.inv_total_mass, f.added_mass_fx, f.added_mass_fy}) {
+      if (!c.valid() || c.index >= attached_count()) {
+        throw std::invalid_argument(
+            "ParcelSystem::set_gas_forcing: an added-mass column is not attached");
+      }
+    }
+  }
   forcing_ = f;
 }
 

@@ -42,7 +42,13 @@ struct GasForcing {
   ParcelColumn drag_coefficient, magnus_coefficient, torque_coefficient, heat_coefficient;
   ParcelColumn impulse_x, impulse_y, work, heat_in;  ///< accumulators (zeroed by the coupling)
   ParcelColumn relative_rotation;                    ///< Omega_g - w of the last sub-step
-  bool any() const { return drag || magnus || pressure || torque || heat; }
+  /// The added-mass force (AddedMassModel): with it each sub-step solves
+  /// (m + m_a) dv/dt = F + F_g (m_a, F_g and 1/(m + m_a) columns the coupling fills), and the
+  /// force F_g - m_a dv/dt is exchanged like drag and stored in the force_added_mass columns.
+  bool added_mass = false;
+  ParcelColumn added_mass_coefficient, added_mass_gas_x, added_mass_gas_y, inv_total_mass;
+  ParcelColumn added_mass_fx, added_mass_fy;  ///< force parts (per real particle, N)
+  bool any() const { return drag || magnus || pressure || torque || heat || added_mass; }
 };
 
 /// One parcel to add (before the first step).

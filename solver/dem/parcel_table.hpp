@@ -24,7 +24,7 @@ inline constexpr int kWallCount = static_cast<int>(Wall::Count);
 
 /// The force, torque and heat parts the table stores per real particle. Contact is always
 /// computed; the others exist when a coupling model writes them.
-enum class ForcePart { None, Contact, Drag, Magnus, Pressure, FluidTorque, Heat };
+enum class ForcePart { None, Contact, Drag, Magnus, Pressure, FluidTorque, Heat, AddedMass };
 
 /// How a column follows the parcels.
 enum class ColumnFlow {

@@ -1,31 +1,35 @@
 // [run], [grid], [output] and cross-section checks.
-#include "solver/scene/parse_sections.hpp"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
 
+#include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
 
 namespace dustlift::scene_detail {
 
 void parse_run(TableReader t, RunConfig& run) {
-  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest", "rest_tolerance",
-                 "rebalance_steps"});
+  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest",
+                 "rest_tolerance", "rebalance_steps"});
   run.name = t.string("name", run.name);
   run.end_time = t.required_number("end_time", Range::positive());
   run.max_steps = t.integer("max_steps", 0, 0, 1'000'000'000'000LL);
-  run.progress_interval = t.number("progress_interval", run.progress_interval, Range::non_negative());
+  run.progress_interval =
+      t.number("progress_interval", run.progress_interval, Range::non_negative());
   run.skip_at_rest = t.boolean("skip_at_rest", run.skip_at_rest);
   run.rest_tolerance = t.number("rest_tolerance", run.rest_tolerance, Range::closed(0.0, 1e-6));
-  if (run.rest_tolerance > 0.0 && !run.skip_at_rest) t.fail("rest_tolerance", "needs skip_at_rest = true (it widens what skipping counts as at rest)");
+  if (run.rest_tolerance > 0.0 && !run.skip_at_rest)
+    t.fail("rest_tolerance",
+           "needs skip_at_rest = true (it widens what skipping counts as at rest)");
   run.rebalance_steps = t.integer("rebalance_steps", run.rebalance_steps, 0, 1'000'000'000'000LL);
   t.finish();
 }
 
 static AxisSpec parse_axis(TableReader t) {
-  t.expect_keys({"start", "end", "cells", "cell_size", "uniform_start", "uniform_end", "cells_below", "cells_above"});
+  t.expect_keys({"start", "end", "cells", "cell_size", "uniform_start", "uniform_end",
+                 "cells_below", "cells_above"});
   AxisSpec a;
   a.start = t.required_number("start");
   a.end = t.required_number("end");
@@ -36,7 +40,10 @@ static AxisSpec parse_axis(TableReader t) {
     a.uniform_end = t.derived_number("uniform_end", a.end, t.full_key("end"));
     a.cells_below = static_cast<std::size_t>(t.integer("cells_below", 0, 0, 100'000'000));
     a.cells_above = static_cast<std::size_t>(t.integer("cells_above", 0, 0, 100'000'000));
-    if (t.has("cells")) t.fail("cells", "give either cells (uniform axis) or cell_size (uniform core with stretched ends), not both");
+    if (t.has("cells"))
+      t.fail("cells",
+             "give either cells (uniform axis) or cell_size (uniform core with stretched ends), "
+             "not both");
   } else {
     a.cells = static_cast<std::size_t>(t.integer("cells", 0, 1, 100'000'000));
     if (!t.has("cells")) t.fail("cells", "missing: give cells (uniform axis) or cell_size");
@@ -56,26 +63,31 @@ void parse_grid(TableReader t, GridConfig& grid) {
   grid.x = parse_axis(tx);
   grid.y = parse_axis(ty);
   // Before anything is allocated: the whole grid must fit the machine.
-  const std::size_t nx = build_axis_nodes(grid.x).size() - 1, ny = build_axis_nodes(grid.y).size() - 1;
+  const std::size_t nx = build_axis_nodes(grid.x).size() - 1,
+                    ny = build_axis_nodes(grid.y).size() - 1;
   const double cells = static_cast<double>(nx) * static_cast<double>(ny);
   if (const std::string shortfall = memory_shortfall(cells, 0.0); !shortfall.empty()) {
     TableReader& larger = nx >= ny ? tx : ty;
     const AxisSpec& axis = nx >= ny ? grid.x : grid.y;
-    larger.fail(axis.cell_size > 0.0 ? "cell_size" : "cells", fmt::format("{} x {} = {:.3g} cells: the run {}", nx, ny, cells, shortfall));
+    larger.fail(axis.cell_size > 0.0 ? "cell_size" : "cells",
+                fmt::format("{} x {} = {:.3g} cells: the run {}", nx, ny, cells, shortfall));
   }
   t.finish();
 }
 
 double min_cell_width(const GridConfig& grid) {
-  return std::min(Axis(build_axis_nodes(grid.x), 0).min_width(), Axis(build_axis_nodes(grid.y), 0).min_width());
+  return std::min(Axis(build_axis_nodes(grid.x), 0).min_width(),
+                  Axis(build_axis_nodes(grid.y), 0).min_width());
 }
 
 namespace {
 
 /// A name that names a series or column: lower-case letters, digits and _.
 void check_series_name(TableReader& t, const std::string& name, const char* what) {
-  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos) {
-    t.fail("name", std::string("a ") + what + " needs a name of lower-case letters, digits and _ (it names its series)");
+  if (name.empty() ||
+      name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos) {
+    t.fail("name", std::string("a ") + what +
+                       " needs a name of lower-case letters, digits and _ (it names its series)");
   }
 }
 
@@ -89,8 +101,8 @@ void parse_bands(TableReader& t, OutputConfig& out, const LayerConfig& L) {
                  {"middle", L.x_min + 0.25 * len, L.x_min + 0.5 * len, mid - 0.1e-3, mid + 0.1e-3}};
     std::string text;
     for (const BandConfig& b : out.bands) {
-      text += fmt::format("{}{{ name = \"{}\", x_min = {}, x_max = {}, y_min = {}, y_max = {} }}", text.empty() ? "[" : ", ",
-                          b.name, b.x_min, b.x_max, b.y_min, b.y_max);
+      text += fmt::format("{}{{ name = \"{}\", x_min = {}, x_max = {}, y_min = {}, y_max = {} }}",
+                          text.empty() ? "[" : ", ", b.name, b.x_min, b.x_max, b.y_min, b.y_max);
     }
     t.note_derived("bands", text + "]", "particles.layer (the paper's bands: section 3.4)");
     return;
@@ -125,11 +137,13 @@ void parse_probes(TableReader& t, OutputConfig& out, const GridConfig& grid, boo
     c.y = p.required_number("y", Range::closed(grid.y.start, grid.y.end));
     std::vector<std::string> fields;
     for (const ProbeField& f : kProbeFields) {
-      if (std::string(f.name) != "mach" && (particles || std::string(f.name) != "alpha_p")) fields.emplace_back(f.name);
+      if (std::string(f.name) != "mach" && (particles || std::string(f.name) != "alpha_p"))
+        fields.emplace_back(f.name);
     }
     c.fields = p.string_list("fields", fields);
     for (const std::string& f : c.fields) {
-      const bool known = std::any_of(std::begin(kProbeFields), std::end(kProbeFields), [&](const ProbeField& k) { return f == k.name; });
+      const bool known = std::any_of(std::begin(kProbeFields), std::end(kProbeFields),
+                                     [&](const ProbeField& k) { return f == k.name; });
       if (!known) p.fail("fields", "\"" + f + "\" is not one of p, rho, u, v, T, mach, alpha_p");
     }
     if (c.fields.empty()) p.fail("fields", "a probe needs at least one field");
@@ -140,33 +154,42 @@ void parse_probes(TableReader& t, OutputConfig& out, const GridConfig& grid, boo
 
 }  // namespace
 
-void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem, const GridConfig& grid) {
-  t.expect_keys({"interval", "vtk", "shock_threshold", "checkpoint_interval", "checkpoint_wall_interval",
-                 "surface_threshold", "surface_stations", "band_bin_width", "band_duration", "contact_window", "bands",
-                 "probes", "probe_interval"});
+void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
+                  const GridConfig& grid) {
+  t.expect_keys({"interval", "vtk", "shock_threshold", "checkpoint_interval",
+                 "checkpoint_wall_interval", "surface_threshold", "surface_stations",
+                 "band_bin_width", "band_duration", "contact_window", "bands", "probes",
+                 "probe_interval", "parcel_fronts"});
   out.interval = t.number("interval", out.interval, Range::non_negative());
   out.vtk = t.boolean("vtk", out.vtk);
   out.shock_threshold = t.number("shock_threshold", out.shock_threshold, Range::open(0.0, 10.0));
-  out.checkpoint_interval = t.derived_number("checkpoint_interval", out.interval, "output.interval", Range::non_negative());
-  out.checkpoint_wall_interval = t.number("checkpoint_wall_interval", out.checkpoint_wall_interval, Range::non_negative());
+  out.checkpoint_interval = t.derived_number("checkpoint_interval", out.interval, "output.interval",
+                                             Range::non_negative());
+  out.checkpoint_wall_interval =
+      t.number("checkpoint_wall_interval", out.checkpoint_wall_interval, Range::non_negative());
   parse_probes(t, out, grid, dem.enabled);
   if (!dem.enabled) {
-    for (const char* key : {"surface_threshold", "surface_stations", "band_bin_width", "band_duration", "contact_window", "bands"}) {
+    for (const char* key : {"surface_threshold", "surface_stations", "band_bin_width",
+                            "band_duration", "contact_window", "bands", "parcel_fronts"}) {
       if (t.has(key)) t.fail(key, "only used with [particles]");
     }
     t.finish();
     return;
   }
   const LayerConfig& L = dem.layer;
-  out.surface_threshold = t.number("surface_threshold", out.surface_threshold, Range::open(0.0, 1.0));
+  out.surface_threshold =
+      t.number("surface_threshold", out.surface_threshold, Range::open(0.0, 1.0));
   // Default stations: a quarter, half and three quarters along the layer.
   const double len = L.x_max - L.x_min;
-  out.surface_stations = t.derived_number_list("surface_stations", {L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.x_min + 0.75 * len},
-                                               "particles.layer (a quarter, half and three quarters along it)");
+  out.surface_stations = t.derived_number_list(
+      "surface_stations", {L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.x_min + 0.75 * len},
+      "particles.layer (a quarter, half and three quarters along it)");
   out.band_bin_width = t.number("band_bin_width", out.band_bin_width, Range::positive());
-  out.band_duration = t.derived_number("band_duration", run.end_time, "run.end_time", Range::positive());
+  out.band_duration =
+      t.derived_number("band_duration", run.end_time, "run.end_time", Range::positive());
   out.contact_window = t.number("contact_window", out.contact_window, Range::positive());
   parse_bands(t, out, L);
+  out.parcel_fronts = t.boolean("parcel_fronts", out.parcel_fronts);
   t.finish();
 }
 

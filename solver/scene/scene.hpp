@@ -43,8 +43,8 @@ struct BandConfig {
 /// (OpenFOAM's `probes`): series probes, columns <name>_<field>.
 struct ProbeConfig {
   std::string name;
-  double x = 0, y = 0;               ///< m
-  std::vector<std::string> fields;   ///< of kProbeFields
+  double x = 0, y = 0;              ///< m
+  std::vector<std::string> fields;  ///< of kProbeFields
 };
 
 /// What a probe can record: the field name and its unit.
@@ -52,19 +52,20 @@ struct ProbeField {
   const char* name;
   const char* unit;
 };
-inline constexpr ProbeField kProbeFields[] = {{"p", "Pa"}, {"rho", "kg/m^3"}, {"u", "m/s"}, {"v", "m/s"},
-                                              {"T", "K"},  {"mach", "1"},     {"alpha_p", "1"}};
+inline constexpr ProbeField kProbeFields[] = {{"p", "Pa"},     {"rho", "kg/m^3"}, {"u", "m/s"},
+                                              {"v", "m/s"},    {"T", "K"},        {"mach", "1"},
+                                              {"alpha_p", "1"}};
 
 struct OutputConfig {
   double interval = 0.0;  ///< s of simulated time between VTK outputs; 0: initial + final only
   bool vtk = true;        ///< write gas.pvd / parcels.pvd
-  double surface_threshold = 1e-4;        ///< alpha_p of the dust surface (paper section 3.2)
-  std::vector<double> surface_stations;   ///< m, x of the h(t) stations
-  std::vector<BandConfig> bands;          ///< force-history bands (default: the paper's two)
-  double band_bin_width = 1e-6;           ///< s, bins of t - t_arrival
-  double band_duration = 0.0;             ///< s, last bin end (default: run end time)
-  double contact_window = 1e-5;           ///< s, contact-force averaging window (paper: 0.01 ms)
-  double shock_threshold = 0.05;          ///< relative pressure rise marking the shock
+  double surface_threshold = 1e-4;       ///< alpha_p of the dust surface (paper section 3.2)
+  std::vector<double> surface_stations;  ///< m, x of the h(t) stations
+  std::vector<BandConfig> bands;         ///< force-history bands (default: the paper's two)
+  double band_bin_width = 1e-6;          ///< s, bins of t - t_arrival
+  double band_duration = 0.0;            ///< s, last bin end (default: run end time)
+  double contact_window = 1e-5;          ///< s, contact-force averaging window (paper: 0.01 ms)
+  double shock_threshold = 0.05;         ///< relative pressure rise marking the shock
   /// s of simulated time between checkpoints (OUTDIR/checkpoint.h5); default: output.interval;
   /// 0: none by simulated time.
   double checkpoint_interval = 0.0;
@@ -74,6 +75,7 @@ struct OutputConfig {
   double checkpoint_wall_interval = 300.0;
   std::vector<ProbeConfig> probes;
   double probe_interval = 0.0;  ///< s of simulated time between probe samples; 0: every step
+  bool parcel_fronts = false;   ///< series parcel_fronts (a curtain's fronts) at each output
 };
 
 /// ParaView Catalyst in situ (docs/catalyst.md): Python pipelines run on the live state.

@@ -2,7 +2,6 @@
 // a run against them: the .vtr/.vtp arrays and field data, the series files and their CSV
 // headers, the series.h5 root attributes and the files of the folder, exactly as listed.
 #include <gtest/gtest.h>
-
 #include <vtkAbstractArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -34,7 +33,6 @@ using dustlift::testing::run_command;
 using dustlift::testing::write_file;
 
 namespace {
-
 
 using Row = std::vector<std::string>;
 
@@ -70,7 +68,8 @@ std::vector<Row> table_after(const std::string& text, const std::string& heading
 std::vector<std::string> code_spans(const std::string& cell) {
   std::vector<std::string> spans;
   const std::regex span("`([^`]+)`");
-  for (auto it = std::sregex_iterator(cell.begin(), cell.end(), span); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(cell.begin(), cell.end(), span); it != std::sregex_iterator();
+       ++it)
     spans.push_back((*it)[1]);
   return spans;
 }
@@ -78,7 +77,8 @@ std::vector<std::string> code_spans(const std::string& cell) {
 std::map<std::string, int> arrays(vtkFieldData* data) {
   std::map<std::string, int> names;
   for (int k = 0; k < data->GetNumberOfArrays(); ++k)
-    names[data->GetAbstractArray(k)->GetName()] = data->GetAbstractArray(k)->GetNumberOfComponents();
+    names[data->GetAbstractArray(k)->GetName()] =
+        data->GetAbstractArray(k)->GetNumberOfComponents();
   return names;
 }
 
@@ -127,7 +127,10 @@ class OutputContract : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new fs::path(fresh_dir("output_contract"));
     write_file(*dir_ / "scene.toml", dustlift::testing::kShockOverDust);
-    const auto r = run_cli("run " + (*dir_ / "scene.toml").string() + " --out " + (*dir_ / "out").string() + " --threads 1");
+    // Every optional output on, so that every documented array and series is written.
+    const auto r =
+        run_cli("run " + (*dir_ / "scene.toml").string() + " --out " + (*dir_ / "out").string() +
+                " --threads 1 --set coupling.added_mass=true --set output.parcel_fronts=true");
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   static void TearDownTestSuite() {
@@ -135,8 +138,12 @@ class OutputContract : public ::testing::Test {
     delete dir_;
   }
   static fs::path out() { return *dir_ / "out"; }
-  static std::string doc(const std::string& name) { return read_bytes(std::string(DUSTLIFT_SOURCE_DIR) + "/" + name); }
-  static fs::path last(const std::string& kind) { return out() / "vtk" / (kind == "gas" ? "gas_000004.vtr" : "parcels_000004.vtp"); }
+  static std::string doc(const std::string& name) {
+    return read_bytes(std::string(DUSTLIFT_SOURCE_DIR) + "/" + name);
+  }
+  static fs::path last(const std::string& kind) {
+    return out() / "vtk" / (kind == "gas" ? "gas_000004.vtr" : "parcels_000004.vtp");
+  }
   static fs::path* dir_;
 };
 fs::path* OutputContract::dir_ = nullptr;
@@ -149,19 +156,21 @@ namespace {
 /// docs/output.md (exactly those arrays and components), the field-data table, and the
 /// README row whose first cell names `readme_key` (the arrays it lists; `with_field_data`:
 /// also the field arrays).
-void expect_documented(vtkDataSet* data, vtkFieldData* arrays_of, const std::string& heading, const std::string& readme_key,
-                       bool with_field_data) {
+void expect_documented(vtkDataSet* data, vtkFieldData* arrays_of, const std::string& heading,
+                       const std::string& readme_key, bool with_field_data) {
   const std::string output_md = read_bytes(std::string(DUSTLIFT_SOURCE_DIR) + "/docs/output.md");
   const auto documented = documented_arrays(table_after(output_md, heading));
   EXPECT_EQ(arrays(arrays_of), documented) << heading;
   std::set<std::string> field;
-  for (const Row& r : table_after(output_md, "Field data of every")) field.insert(code_spans(r.at(0)).at(0));
+  for (const Row& r : table_after(output_md, "Field data of every"))
+    field.insert(code_spans(r.at(0)).at(0));
   EXPECT_EQ(field.size(), 3u);
   EXPECT_EQ(keys(arrays(data->GetFieldData())), field);
   std::set<std::string> expected = keys(documented);
   if (with_field_data) expected.insert(field.begin(), field.end());
   std::size_t rows = 0;
-  for (const Row& r : table_after(read_bytes(std::string(DUSTLIFT_SOURCE_DIR) + "/README.md"), "## What a run writes")) {
+  for (const Row& r : table_after(read_bytes(std::string(DUSTLIFT_SOURCE_DIR) + "/README.md"),
+                                  "## What a run writes")) {
     if (r.at(0).find(readme_key) == std::string::npos) continue;
     ++rows;
     std::set<std::string> named;
@@ -179,7 +188,8 @@ TEST_F(OutputContract, GasFileHoldsExactlyTheDocumentedArraysAndFieldData) {
   reader->Update();
   ASSERT_EQ(reader->GetOutput()->GetNumberOfCells(), 480);
   EXPECT_EQ(reader->GetOutput()->GetCellData()->GetNumberOfArrays(), 7);
-  expect_documented(reader->GetOutput(), reader->GetOutput()->GetCellData(), "### Gas: `vtk/gas_NNNNNN.vtr`", "gas.pvd", true);
+  expect_documented(reader->GetOutput(), reader->GetOutput()->GetCellData(),
+                    "### Gas: `vtk/gas_NNNNNN.vtr`", "gas.pvd", true);
 }
 
 TEST_F(OutputContract, ParcelFileHoldsExactlyTheDocumentedArraysAndFieldData) {
@@ -187,18 +197,19 @@ TEST_F(OutputContract, ParcelFileHoldsExactlyTheDocumentedArraysAndFieldData) {
   reader->SetFileName(last("parcels").string().c_str());
   reader->Update();
   ASSERT_EQ(reader->GetOutput()->GetNumberOfPoints(), 2404);
-  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNumberOfArrays(), 10);
-  expect_documented(reader->GetOutput(), reader->GetOutput()->GetPointData(), "### Parcels: `vtk/parcels_NNNNNN.vtp`",
-                    "parcels.pvd", false);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNumberOfArrays(), 11);
+  expect_documented(reader->GetOutput(), reader->GetOutput()->GetPointData(),
+                    "### Parcels: `vtk/parcels_NNNNNN.vtp`", "parcels.pvd", false);
 }
 
 TEST_F(OutputContract, EverySeriesFileIsDocumentedWithItsColumns) {
   const auto rows = table_after(doc("docs/output.md"), "## Series");
-  ASSERT_EQ(rows.size(), 6u);
+  ASSERT_EQ(rows.size(), 7u);
   std::set<std::string> matched;
   for (const Row& r : rows) {
     const std::string file = code_spans(r.at(0)).at(0);
-    const std::regex name(std::regex_replace(std::regex_replace(file, std::regex("\\."), "\\."), std::regex("<[^>]+>"), "[a-z0-9_]+"));
+    const std::regex name(std::regex_replace(std::regex_replace(file, std::regex("\\."), "\\."),
+                                             std::regex("<[^>]+>"), "[a-z0-9_]+"));
     const std::regex header = header_pattern(code_spans(r.at(1)).at(0));
     std::size_t found = 0;
     for (const auto& f : fs::directory_iterator(out() / "series")) {
@@ -206,7 +217,8 @@ TEST_F(OutputContract, EverySeriesFileIsDocumentedWithItsColumns) {
       if (!std::regex_match(base, name)) continue;
       ++found;
       matched.insert(base);
-      EXPECT_TRUE(std::regex_match(first_line(f.path()), header)) << base << ": " << first_line(f.path()) << "\n documented: " << r.at(1);
+      EXPECT_TRUE(std::regex_match(first_line(f.path()), header))
+          << base << ": " << first_line(f.path()) << "\n documented: " << r.at(1);
     }
     EXPECT_GE(found, 1u) << file << " is documented but not written";
   }
@@ -215,13 +227,14 @@ TEST_F(OutputContract, EverySeriesFileIsDocumentedWithItsColumns) {
       EXPECT_TRUE(matched.count(f.path().filename().string())) << f.path() << " is not documented";
     }
   }
-  EXPECT_EQ(matched.size(), 7u);  // two bands
+  EXPECT_EQ(matched.size(), 8u);  // two bands, the parcel fronts
   // The README names each series family.
   for (const Row& r : table_after(doc("README.md"), "## What a run writes")) {
     if (r.at(0).find("series/*.csv") == std::string::npos) continue;
     for (const auto& s : code_spans(r.at(1))) {
       if (s.find('_') == std::string::npos && s != "probes") continue;  // units and the like
-      if (s.rfind("name_unit", 0) == 0 || s.find("_per_") != std::string::npos || s == "units") continue;
+      if (s.rfind("name_unit", 0) == 0 || s.find("_per_") != std::string::npos || s == "units")
+        continue;
       const std::string csv = std::regex_replace(s, std::regex("<band>"), "surface") + ".csv";
       EXPECT_TRUE(fs::exists(out() / "series" / csv)) << "README names " << s;
     }
@@ -230,7 +243,8 @@ TEST_F(OutputContract, EverySeriesFileIsDocumentedWithItsColumns) {
 
 TEST_F(OutputContract, SeriesH5HasTheDocumentedRootAttributesAndAGroupPerSeries) {
   std::string names;
-  for (const Row& r : table_after(doc("docs/output.md"), "### `series/series.h5`")) names += (names.empty() ? "" : " ") + code_spans(r.at(0)).at(0);
+  for (const Row& r : table_after(doc("docs/output.md"), "### `series/series.h5`"))
+    names += (names.empty() ? "" : " ") + code_spans(r.at(0)).at(0);
   const fs::path script = *dir_ / "h5check.py";
   write_file(script, R"py(
 import sys, h5py, glob, os
@@ -246,9 +260,10 @@ for name in f:
         assert f[name][c].dims[0][0].name == "/" + name + "/" + columns[0], (name, c)
 print("ok", len(csv))
 )py");
-  const auto r = run_command("/usr/bin/python3 " + script.string() + " " + out().string() + " '" + names + "'");
+  const auto r = run_command("/usr/bin/python3 " + script.string() + " " + out().string() + " '" +
+                             names + "'");
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("ok 7"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ok 8"), std::string::npos) << r.output;
 }
 
 TEST_F(OutputContract, TheFolderHoldsTheDocumentedFiles) {
@@ -269,8 +284,10 @@ TEST_F(OutputContract, TheFolderHoldsTheDocumentedFiles) {
   // And the README's table (catalyst/ only with [insitu.catalyst]: test_catalyst.cpp checks it).
   for (const Row& r : table_after(doc("README.md"), "## What a run writes")) {
     for (std::string path : code_spans(r.at(0))) {
-      if (path.rfind("figures/", 0) == 0 || path == "pressure_parcels.pvsm" || path == "catalyst/") continue;
-      path = std::regex_replace(std::regex_replace(path, std::regex("NNNNNN"), "000000"), std::regex("\\*"), "shock_position");
+      if (path.rfind("figures/", 0) == 0 || path == "pressure_parcels.pvsm" || path == "catalyst/")
+        continue;
+      path = std::regex_replace(std::regex_replace(path, std::regex("NNNNNN"), "000000"),
+                                std::regex("\\*"), "shock_position");
       EXPECT_TRUE(fs::exists(out() / path)) << "README: " << path;
     }
   }

@@ -31,15 +31,19 @@ struct GasSample {
 struct ParcelAtSample {
   double vx = 0.0, vy = 0.0, omega = 0.0;  ///< m/s, rad/s (counter-clockwise)
   double diameter = 100e-6;                ///< m, of a real particle
+  double mass = 0.0;                       ///< kg, of a real particle
 };
 
 /// The sub-step coefficients of one parcel (zero for effects that are off).
 struct SubstepCoefficients {
-  double drag = 0.0;                            ///< K, N s/m
-  double magnus = 0.0;                          ///< M (with the convention's sign), N s^2/m^2
-  double pressure_fx = 0.0, pressure_fy = 0.0;  ///< N
-  double torque = 0.0;                          ///< kappa, N m s
-  double heat = 0.0;                            ///< H, W/K
+  double drag = 0.0;                                ///< K, N s/m
+  double magnus = 0.0;                              ///< M (with the convention's sign), N s^2/m^2
+  double pressure_fx = 0.0, pressure_fy = 0.0;      ///< N
+  double torque = 0.0;                              ///< kappa, N m s
+  double heat = 0.0;                                ///< H, W/K
+  double added_mass = 0.0;                          ///< m_a = C_M rho_g V_p, kg
+  double added_mass_fx = 0.0, added_mass_fy = 0.0;  ///< C_M V_p (-grad p), N
+  double inv_total_mass = 0.0;                      ///< 1 / (m + m_a), 1/kg
 };
 
 /// What the models read of one parcel: its gas, itself, slip = |u_g - v_p| and
@@ -68,16 +72,25 @@ struct GasReads {
 /// (GasForcing) and the parcel's force-part columns the outputs write (ParcelSystem).
 struct ForceParts {
   bool drag = false, magnus = false, pressure = false, torque = false, heat = false;
+  bool added_mass = false;
   /// Whether the part that the parcel table's columns tagged `part` hold is written (contact
   /// is always computed).
   bool has(ForcePart part) const {
     switch (part) {
-      case ForcePart::Drag: return drag;
-      case ForcePart::Magnus: return magnus;
-      case ForcePart::Pressure: return pressure;
-      case ForcePart::FluidTorque: return torque;
-      case ForcePart::Heat: return heat;
-      default: return true;
+      case ForcePart::Drag:
+        return drag;
+      case ForcePart::Magnus:
+        return magnus;
+      case ForcePart::Pressure:
+        return pressure;
+      case ForcePart::FluidTorque:
+        return torque;
+      case ForcePart::Heat:
+        return heat;
+      case ForcePart::AddedMass:
+        return added_mass;
+      default:
+        return true;
     }
   }
   ForceParts& operator|=(const ForceParts& o) {
@@ -86,6 +99,7 @@ struct ForceParts {
     pressure = pressure || o.pressure;
     torque = torque || o.torque;
     heat = heat || o.heat;
+    added_mass = added_mass || o.added_mass;
     return *this;
   }
 };

@@ -30,14 +30,28 @@ double xi1_parmar(double mach, double re);
 
 /// How the volume-fraction correction xi_2(alpha_g) is evaluated.
 struct VolumeFractionCorrection {
-  enum class Kind { None, Sangani, Linear };
+  enum class Kind { None, Sangani, Linear, Tenneti };
   Kind kind = Kind::Sangani;
   /// phi = alpha_p is capped at this value before evaluation (1 = no cap).
   double phi_cap = 1.0;
 };
 /// Sangani, Zhang & Prosperetti (1991) as used by Ling et al. (2012):
-/// xi_2 = (1 + 2 phi) / (1 - phi)^3; Linear: 1 + 5.94 phi; None: 1.
+/// xi_2 = (1 + 2 phi) / (1 - phi)^3; Linear: 1 + 5.94 phi; None: 1. (Tenneti is not a factor
+/// on the isolated drag: see tenneti_drag_factor.)
 double xi2(double alpha_g, const VolumeFractionCorrection& c);
+
+/// Tenneti, Garg & Subramaniam (2011, Int. J. Multiphase Flow 37:1072), from particle-resolved
+/// simulations of random arrays at 0.1 <= phi <= 0.5, 0.01 <= Re_m <= 300: the drag of one
+/// particle per 3 pi mu d u_r, with the mean pressure drag taken out (the pressure-gradient
+/// force -V_p grad p is its own effect), as OpenFOAM's Tenneti model and Osnes et al. (2023,
+/// Int. J. Multiphase Flow 165:104485) take it:
+///   F = (Re_m C_D(Re_m) / 24) / (1 - phi) + (1 - phi) (b1 + b2),  Re_m = (1 - phi) Re,
+///   b1 = 5.81 phi / (1 - phi)^2 + 0.48 phi^(1/3) / (1 - phi)^3,
+///   b2 = (1 - phi)^2 phi^3 Re (0.95 + 0.61 phi^3 / (1 - phi)^2),
+/// with the isolated sphere's Re C_D given at Re_m (`re_cd_isolated`, the scene's curve:
+/// Clift-Gauvin, or Parmar's compressible one). Tenneti's own isolated curve is
+/// Schiller-Naumann's, 24 (1 + 0.15 Re^0.687), which Clift-Gauvin extends.
+double tenneti_drag_factor(double re_cd_isolated, double re, double phi);
 
 /// Local gas state interpolated to a parcel (eq. 16).
 struct GasAtParcel {

@@ -1,0 +1,25 @@
+#pragma once
+// The streamwise extent of a cloud of parcels (a particle curtain's upstream and downstream
+// fronts): the smallest and largest x, and the x below which a share of the real particles
+// lies. Experiments see a front as the edge of a schlieren or x-ray image, which lies
+// between the outermost particle and the bulk; codes report the outermost particle (ppiclF)
+// or the 1 % and 99 % points (jCODE). VTK-free.
+#include <span>
+#include <vector>
+
+namespace dustlift {
+
+struct ParcelFronts {
+  double x_min = 0.0, x_max = 0.0;  ///< m, the outermost parcels
+  double x_low = 0.0,
+         x_high = 0.0;  ///< m, the x below which `share` / 1 - `share` of the particles lie
+};
+
+/// The fronts of parcels at x (m), each standing for `weight` real particles (> 0). `share`
+/// in (0, 0.5): x_low is the smallest x with at least share W of the weight at or below it,
+/// x_high the smallest x with at least (1 - share) W. `order` is scratch. Throws
+/// std::invalid_argument for no parcels or mismatched sizes.
+ParcelFronts parcel_fronts(std::span<const double> x, std::span<const double> weight, double share,
+                           std::vector<std::size_t>& order);
+
+}  // namespace dustlift

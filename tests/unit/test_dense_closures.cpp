@@ -1,0 +1,198 @@
+// The closures a shock over a dense particle cloud needs beyond the paper's: the added-mass
+// (inviscid-unsteady) force of Parmar et al. (2008) with Zuber's volume-fraction correction,
+// and the Tenneti et al. (2011) drag of dense random arrays. Each against its published
+// formula, written out here from the papers; the added mass's implicit sub-step against the
+// exact motion of a sphere accelerated by a uniform pressure gradient.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "insitu/parcel_fronts.hpp"
+#include "solver/coupling/coupling_config.hpp"
+#include "solver/coupling/coupling_models.hpp"
+#include "solver/coupling/models/added_mass.hpp"
+#include "solver/coupling/models/drag.hpp"
+#include "solver/dem/parcel_system.hpp"
+
+using namespace dustlift;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+TEST(AddedMass, CoefficientIsParmarsMachFitTimesZubersFactor) {
+  using aero::AddedMassVolumeFraction;
+  // Incompressible sphere: C_M = 1/2.
+  EXPECT_DOUBLE_EQ(aero::added_mass_coefficient(0.0, 0.0, AddedMassVolumeFraction::Zuber), 0.5);
+  // Parmar et al. (2008): 1/2 (1 + 1.8 M^2 + 7.6 M^4) at M = 0.4: 1/2 (1 + 0.288 + 0.19456).
+  EXPECT_NEAR(aero::added_mass_coefficient(0.4, 0.0, AddedMassVolumeFraction::None), 0.5 * 1.48256,
+              1e-15);
+  // Held beyond M = 0.6 (the fit's range): 1/2 x 2.6330 (jCODE's hard-coded 2.633).
+  EXPECT_NEAR(aero::added_mass_coefficient(0.6, 0.0, AddedMassVolumeFraction::None), 0.5 * 2.63296,
+              1e-12);
+  EXPECT_EQ(aero::added_mass_coefficient(1.3, 0.0, AddedMassVolumeFraction::None),
+            aero::added_mass_coefficient(0.6, 0.0, AddedMassVolumeFraction::None));
+  // Zuber (1964): (1 + 2 phi) / (1 - phi); at the curtain's phi = 0.21: 1.42 / 0.79.
+  EXPECT_NEAR(aero::added_mass_coefficient(0.0, 0.21, AddedMassVolumeFraction::Zuber),
+              0.5 * 1.42 / 0.79, 1e-15);
+  EXPECT_EQ(aero::added_mass_coefficient(0.0, 0.21, AddedMassVolumeFraction::None), 0.5);
+}
+
+TEST(AddedMass, ModelCoefficientTimesSubstepPieceIsThePublishedForce) {
+  CouplingConfig c;
+  c.added_mass = true;
+  const AddedMassModel model(c);
+  ModelInput in;
+  in.gas = GasSample{.rho = 2.07,
+                     .u = 300.0,
+                     .v = 0.0,
+                     .c = 412.0,
+                     .alpha_g = 0.79,
+                     .dpdx = -3.0e7,
+                     .dpdy = 2.0e6};
+  const double d = 115e-6, m = 2520.0 * kPi / 6.0 * d * d * d;
+  in.parcel = ParcelAtSample{20.0, 0.0, 0.0, d, m};
+  in.slip = 280.0;
+  SubstepCoefficients out;
+  model.coefficients(&in, &out, 1);
+  const double c_m =
+      aero::added_mass_coefficient(280.0 / 412.0, 0.21, aero::AddedMassVolumeFraction::Zuber);
+  const double vp = kPi / 6.0 * d * d * d;
+  EXPECT_NEAR(out.added_mass, c_m * 2.07 * vp, 1e-15 * out.added_mass);
+  EXPECT_DOUBLE_EQ(out.inv_total_mass, 1.0 / (m + out.added_mass));
+  // At an acceleration a, F_g - m_a a is C_M V_p [D(rho u)/Dt - rho a] with the gas's momentum
+  // rate D(rho u)/Dt = -s grad p, s = alpha_g / (alpha_g + alpha_p C_M) (the gas carries the
+  // cloud's added mass).
+  const double share = 0.79 / (0.79 + 0.21 * c_m);
+  EXPECT_DOUBLE_EQ(aero::gas_acceleration_share(0.79, c_m), share);
+  EXPECT_DOUBLE_EQ(aero::gas_acceleration_share(1.0, c_m), 1.0);  // a single sphere: -grad p
+  const Vec2 a{1.5e5, -2.0e3};
+  const Vec2 f = AddedMassModel::force({out.added_mass_fx, out.added_mass_fy}, out.added_mass, a);
+  const Vec2 published = aero::added_mass_force(c_m, d, 2.07, {3.0e7 * share, -2.0e6 * share}, a);
+  EXPECT_NEAR(f.x, published.x, 1e-12 * std::abs(published.x));
+  EXPECT_NEAR(f.y, published.y, 1e-12 * std::abs(published.y));
+}
+
+/// One parcel at rest in a frozen uniform pressure gradient, no drag: with the pressure force
+/// and the added mass, (m + m_a) dv/dt = -V_p (1 + C_M) grad p exactly (a sphere in an
+/// accelerating inviscid fluid), whatever the sub-steps.
+TEST(AddedMass, ImplicitSubstepsGiveTheExactAccelerationInAUniformGradient) {
+  DemConfig cfg;
+  cfg.domain.x_min = cfg.domain.y_min = 0.0;
+  cfg.domain.x_max = cfg.domain.y_max = 1.0;
+  cfg.domain.wall_bottom = false;
+  cfg.particle_diameter = cfg.parcel_diameter = 115e-6;
+  cfg.density = 2520.0;
+  ParcelSystem ps(cfg);
+  const double d = 115e-6, rho_p = 2520.0, rho_g = 2.07, grad_p = -3.0e7, c_m = 0.5;
+  ParcelInit p;
+  p.x = p.y = 0.5;
+  p.diameter = p.real_diameter = d;
+  p.density = rho_p;
+  ps.add_parcel(p);
+  std::vector<ParcelColumn> cols;
+  for (const char* name : {"gu", "gv", "grot", "gT", "K", "M", "kappa", "H", "jx", "jy", "work",
+                           "heat", "wrel", "m_a", "am_gx", "am_gy", "inv_mt", "am_fx", "am_fy"}) {
+    cols.push_back(ps.attach_column({name, "", false, false}));
+  }
+  GasForcing f;
+  f.pressure = true;
+  f.added_mass = true;
+  f.gas_u = cols[0], f.gas_v = cols[1], f.gas_rotation = cols[2], f.gas_temperature = cols[3];
+  f.drag_coefficient = cols[4], f.magnus_coefficient = cols[5], f.torque_coefficient = cols[6];
+  f.heat_coefficient = cols[7], f.impulse_x = cols[8], f.impulse_y = cols[9], f.work = cols[10];
+  f.heat_in = cols[11], f.relative_rotation = cols[12];
+  f.added_mass_coefficient = cols[13], f.added_mass_gas_x = cols[14], f.added_mass_gas_y = cols[15];
+  f.inv_total_mass = cols[16], f.added_mass_fx = cols[17], f.added_mass_fy = cols[18];
+  ps.set_gas_forcing(f);
+  const double vp = kPi / 6.0 * d * d * d, m = rho_p * vp, m_a = c_m * rho_g * vp;
+  ps.pressure_fx[0] = -vp * grad_p;
+  ps.column(cols[13])[0] = m_a;
+  ps.column(cols[14])[0] = -c_m * vp * grad_p;
+  ps.column(cols[16])[0] = 1.0 / (m + m_a);
+  const double t = 2e-6;
+  ps.advance(t);
+  const double a_exact = -vp * (1.0 + c_m) * grad_p / (m + m_a);
+  EXPECT_NEAR(ps.vx[0], a_exact * t, 1e-12 * a_exact * t);
+  // The added-mass force stored is F_g - m_a a, and the impulse exchanged is its integral.
+  const double f_am = -c_m * vp * grad_p - m_a * a_exact;
+  EXPECT_NEAR(ps.column(cols[17])[0], f_am, 1e-12 * std::abs(f_am));
+  EXPECT_NEAR(ps.column(cols[8])[0], f_am * t, 1e-12 * std::abs(f_am * t));
+  // Without the added mass the same gradient accelerates the bead by the pressure force alone.
+  EXPECT_GT(std::abs(a_exact), std::abs(-vp * grad_p / m));
+}
+
+/// Tenneti, Garg & Subramaniam (2011), eqs. as published: F = F_isol(Re_m)/(1-phi)^3 + F_phi +
+/// F_phiRe with Re_m = (1-phi) Re, F_isol = 1 + 0.15 Re_m^0.687, the drag 3 pi mu d (1-phi) F u_r;
+/// with the mean pressure drag taken out (times (1-phi)): 3 pi mu d (1-phi)^2 F u_r.
+double tenneti_published(double re, double phi) {
+  const double re_m = (1.0 - phi) * re, ag = 1.0 - phi;
+  const double f_isol = 1.0 + 0.15 * std::pow(re_m, 0.687);
+  const double f_phi = 5.81 * phi / (ag * ag * ag) + 0.48 * std::cbrt(phi) / (ag * ag * ag * ag);
+  const double f_phi_re = phi * phi * phi * re_m * (0.95 + 0.61 * phi * phi * phi / (ag * ag));
+  return ag * ag * (f_isol / (ag * ag * ag) + f_phi + f_phi_re);
+}
+
+TEST(TennetiDrag, FactorIsThePublishedCorrelationWithoutTheMeanPressureDrag) {
+  for (double phi : {0.1, 0.21, 0.4}) {
+    for (double re : {1.0, 50.0, 300.0, 3000.0}) {
+      const double re_m = (1.0 - phi) * re;
+      const double schiller_naumann = 24.0 * (1.0 + 0.15 * std::pow(re_m, 0.687));
+      EXPECT_NEAR(aero::tenneti_drag_factor(schiller_naumann, re, phi), tenneti_published(re, phi),
+                  1e-13 * tenneti_published(re, phi))
+          << "phi " << phi << ", Re " << re;
+    }
+  }
+  // No particles around: the isolated sphere's drag.
+  EXPECT_DOUBLE_EQ(aero::tenneti_drag_factor(48.0, 10.0, 0.0), 2.0);
+}
+
+TEST(TennetiDrag, ModelDragAtTheCurtainsConditions) {
+  // Post-shock air through the curtain (Ms 1.66: rho 2.07, 424 K) at 280 m/s slip, phi = 0.21.
+  const aero::GasAtParcel g{2.07, {300.0, 0.0}, 2.4e-5, 412.0, 0.79};
+  aero::VolumeFractionCorrection tenneti{aero::VolumeFractionCorrection::Kind::Tenneti, 1.0};
+  aero::VolumeFractionCorrection sangani{aero::VolumeFractionCorrection::Kind::Sangani, 1.0};
+  const double d = 115e-6, slip = 280.0, re = 2.07 * slip * d / 2.4e-5;
+  const double beta = aero::drag_coefficient(g, slip, d, false, tenneti);
+  const double expected =
+      3.0 * kPi * 2.4e-5 * d * aero::tenneti_drag_factor(aero::re_cd_standard(0.79 * re), re, 0.21);
+  EXPECT_NEAR(beta, expected, 1e-14 * expected);
+  // Near Re ~ 2800 Tenneti (mean pressure drag out) is about half of Sangani's crowding.
+  const double ratio = beta / aero::drag_coefficient(g, slip, d, false, sangani);
+  EXPECT_GT(ratio, 0.4);
+  EXPECT_LT(ratio, 0.7);
+}
+
+TEST(TennetiDrag, AndAddedMassAreListedWhenOn) {
+  CouplingConfig c;
+  c.volume_fraction.kind = aero::VolumeFractionCorrection::Kind::Tenneti;
+  c.added_mass = true;
+  const CouplingModels models(c);
+  EXPECT_TRUE(models.writes().added_mass);
+  EXPECT_TRUE(models.reads().pressure_gradient);
+  std::string all;
+  for (const auto& d : models.descriptions()) all += d + "\n";
+  EXPECT_NE(all.find("Tenneti"), std::string::npos) << all;
+  EXPECT_NE(all.find("added mass"), std::string::npos) << all;
+  CouplingConfig paper;
+  EXPECT_FALSE(CouplingModels(paper).writes().added_mass) << "off by default";
+}
+
+TEST(ParcelFronts, OutermostAndWeightedPercentilePoints) {
+  const std::vector<double> x{0.3, 0.1, 0.5, 0.2, 0.4};
+  const std::vector<double> w{1.0, 1.0, 1.0, 1.0, 96.0};
+  std::vector<std::size_t> order;
+  const ParcelFronts f = parcel_fronts(x, w, 0.01, order);
+  EXPECT_EQ(f.x_min, 0.1);
+  EXPECT_EQ(f.x_max, 0.5);
+  // 1 % of 100 is reached by the first parcel; 99 % only with the heavy one at 0.4.
+  EXPECT_EQ(f.x_low, 0.1);
+  EXPECT_EQ(f.x_high, 0.4);
+  const ParcelFronts g = parcel_fronts(x, w, 0.03, order);
+  EXPECT_EQ(g.x_low, 0.3);  // 0.1, 0.2, 0.3 hold 3 % of the weight
+  EXPECT_THROW(parcel_fronts(std::vector<double>{}, std::vector<double>{}, 0.01, order),
+               std::invalid_argument);
+}
+
+}  // namespace
