@@ -40,13 +40,17 @@ SETTINGS = [
     ("none_added_mass", "no crowding + added mass", "isolated-sphere drag (xi_2 = 1) + added mass"),
     ("standard_drag", "standard drag only", "Clift-Gauvin drag only (no xi_1, xi_2, pressure, added mass, Magnus, torque)"),
 ]
-# (folder, label) of the resolution study of the recommended setting
+# The recommended run: the scene as it is (paper effects + added mass, 64 mm channel)
+RECOMMENDED_LABEL = "recommended: Sangani + added mass, 2,588 parcels"
+# (folder, label) of the resolution study of the recommended closures (paper effects + added mass)
 CONVERGENCE = [
     ("rec_cells_05", "0.5 mm cells, 16 mm channel (646 parcels)"),
-    ("RECOMMENDED", "0.25 mm cells, 16 mm channel (646 parcels): the scene"),
+    ("paper_added_mass", "0.25 mm cells, 16 mm channel (646 parcels)"),
     ("rec_cells_0125", "0.125 mm cells (1.1 particle diameters), 16 mm channel"),
     ("rec_height_4mm", "0.25 mm cells, 4 mm channel (162 parcels)"),
-    ("rec_height_32mm", "0.25 mm cells, 32 mm channel (1292 parcels)"),
+    ("rec_height_32mm", "0.25 mm cells, 32 mm channel (1,292 parcels)"),
+    ("recommended", "0.25 mm cells, 64 mm channel (2,588 parcels): the scene"),
+    ("rec_height_128mm", "0.25 mm cells, 128 mm channel (5,176 parcels)"),
 ]
 TABLE_TIMES_US = [120, 240, 360, 480, 600, 690]
 
@@ -136,15 +140,14 @@ def plot(runs, exp, ling, labels, recommended, path):
                 continue
             t, fronts, _ = runs[name]
             c = colours[k % len(colours)]
-            label = dict((s[0], s[1]) for s in SETTINGS).get(name, name)
+            label = dict((s[0], s[1]) for s in SETTINGS).get(name, RECOMMENDED_LABEL if name == recommended else name)
             ax.plot(fronts["x_min"], t, "-", color=c, lw=1.5, label=label)
             ax.plot(fronts["x_max"], t, "-", color=c, lw=1.5)
             if which == "recommended":
                 ax.plot(fronts["x_p01"], t, ":", color=c, lw=1.5, label="1 % and 99 % of the particles")
                 ax.plot(fronts["x_p99"], t, ":", color=c, lw=1.5)
         ax.set_xlabel("front position from the curtain's initial upstream edge (mm)")
-        ax.set_title("every setting studied" if which == "all"
-                     else "recommended: " + dict((s[0], s[1]) for s in SETTINGS).get(recommended, recommended))
+        ax.set_title("the closures compared (16 mm channel)" if which == "all" else RECOMMENDED_LABEL)
         ax.set_xlim(-1, 70)
         ax.set_ylim(0, 720)
         ax.grid(alpha=0.3)
@@ -159,7 +162,7 @@ def plot(runs, exp, ling, labels, recommended, path):
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("runs")
-    p.add_argument("--recommended", default="paper_added_mass")
+    p.add_argument("--recommended", default="recommended")
     p.add_argument("--wall", type=float, default=np.nan, help="wall seconds of the whole regeneration")
     p.add_argument("--markdown", default=None)
     p.add_argument("--figures", default=None)
@@ -168,7 +171,7 @@ def main(argv):
     a = p.parse_args(argv)
     exp, ling = read_experiment(), read_ling()
     runs = {}
-    for name in [s[0] for s in SETTINGS] + [c[0] for c in CONVERGENCE if c[0] != "RECOMMENDED"]:
+    for name in [s[0] for s in SETTINGS] + [c[0] for c in CONVERGENCE]:
         folder = os.path.join(a.runs, name)
         if os.path.exists(os.path.join(folder, "series", "parcel_fronts.csv")):
             runs[name] = read_run(folder)
@@ -202,8 +205,9 @@ def write_markdown(a, runs, scores, exp, figrel):
     w("")
     w(f"![fronts]({figrel}/curtain_ms166_fronts.png)")
     w("")
-    w("Score: of the measured points, those the run's front meets within the error bar (upstream, downstream), and "
-      "the RMS of |ours − measured| / bar over all of them; wall: the whole run to 700 µs.")
+    w("The closures and forces compared, each on the same 16 mm channel (646 parcels). Score: of the measured points, "
+      "those the run's front meets within the error bar (upstream, downstream), and the RMS of |ours − measured| / bar "
+      "over all of them; wall: the whole run to 700 µs.")
     w("")
     w("| setting | what it switches | upstream in bars | downstream in bars | RMS (bars) | worst (bars) | wall |")
     w("|---|---|---|---|---|---|---|")
@@ -211,7 +215,7 @@ def write_markdown(a, runs, scores, exp, figrel):
         if name not in scores:
             continue
         s = scores[name]
-        w(f"| {label}{' (**recommended**)' if name == rec else ''} | {what} | {s['up_in']}/{s['up_n']} | "
+        w(f"| {label}{' (**recommended closures**)' if name == 'paper_added_mass' else ''} | {what} | {s['up_in']}/{s['up_n']} | "
           f"{s['down_in']}/{s['down_n']} | {s['rms']:.2f} | {s['worst']:.2f} | {runs[name][2]:.1f} s |")
     w("")
     ling = read_ling()
@@ -223,10 +227,14 @@ def write_markdown(a, runs, scores, exp, figrel):
           f"setting's {front} front differs by {np.sqrt(np.mean(diff ** 2)):.2f} mm RMS and {np.abs(diff).max():.2f} mm "
           f"at most over their {ok.sum()} points.")
         w("")
+    w(f"The recommended run ({RECOMMENDED_LABEL}): upstream front within the bars at "
+      f"{scores[rec]['up_in']}/{scores[rec]['up_n']} measured times, downstream at {scores[rec]['down_in']}/"
+      f"{scores[rec]['down_n']}, RMS {scores[rec]['rms']:.2f} bars, worst {scores[rec]['worst']:.2f}; {runs[rec][2]:.0f} s.")
+    w("")
     w("Fronts at six times (mm from the initial upstream edge; measured with the bar's reach below/above, "
       "or ±< the marker where the bar hides behind it):")
     w("")
-    shown = [(name, label) for name, label, _ in SETTINGS if name in runs]
+    shown = [(rec, "recommended (2,588 parcels)")] + [(name, label) for name, label, _ in SETTINGS if name in runs]
     w("| t (µs) | measured upstream | measured downstream | " + " | ".join(f"{l}: up / down" for _, l in shown) + " |")
     w("|---" * (3 + len(shown)) + "|")
     for t in TABLE_TIMES_US:
@@ -245,21 +253,22 @@ def write_markdown(a, runs, scores, exp, figrel):
             cells.append(f"{np.interp(tu, tt, fr['x_min']):.2f} / {np.interp(td, tt, fr['x_max']):.2f}")
         w(f"| {t} | {row[0]} | {row[1]} | " + " | ".join(cells) + " |")
     w("")
-    w(f"Resolution of the recommended setting ({dict((s[0], s[1]) for s in SETTINGS)[rec]}): cells, channel height "
-      "and with it the parcels that sample the curtain.")
+    w("The recommended closures (Sangani + added mass) at other resolutions: cells, and the channel height and with "
+      "it the number of parcels that sample the curtain (the outermost parcels are extremes of that sample).")
     w("")
-    w("| run | upstream in bars | downstream in bars | RMS (bars) | downstream front at 361 µs | wall |")
-    w("|---|---|---|---|---|---|")
+    w("| run | upstream in bars | downstream in bars | RMS (bars) | downstream front at 361 µs | its 99 % point | wall |")
+    w("|---|---|---|---|---|---|---|")
     ed = exp["downstream"]
     k360 = int(np.argmin(np.abs(ed[:, 0] - 360)))
     for name, label in CONVERGENCE:
-        key = rec if name == "RECOMMENDED" else name
+        key = name
         if key not in runs:
             continue
         s = scores[key]
         tt, fr, wall = runs[key]
         w(f"| {label} | {s['up_in']}/{s['up_n']} | {s['down_in']}/{s['down_n']} | {s['rms']:.2f} | "
-          f"{np.interp(ed[k360, 0], tt, fr['x_max']):.2f} mm (measured {ed[k360, 1]:.2f}) | {wall:.1f} s |")
+          f"{np.interp(ed[k360, 0], tt, fr['x_max']):.2f} mm (measured {ed[k360, 1]:.2f}) | "
+          f"{np.interp(ed[k360, 0], tt, fr['x_p99']):.2f} mm | {wall:.1f} s |")
     w("")
     w(END)
     block = "\n".join(lines)
