@@ -89,6 +89,13 @@ struct DemDomain {
   bool periodic_x = false;               ///< x_min and x_max identified (no left/right walls)
 };
 
+/// One size class of a polydisperse layer: real particles of one diameter holding a share of
+/// the layer's solid mass.
+struct SizeClass {
+  double diameter = 100e-6;    ///< m, real particle diameter
+  double mass_fraction = 1.0;  ///< share of the layer's mass (the classes' shares sum to 1)
+};
+
 struct DemConfig {
   bool enabled = false;  ///< false: a gas-only scene, no parcel code runs
 
@@ -97,6 +104,9 @@ struct DemConfig {
   double density = 980.0;                ///< kg/m^3
   double heat_capacity = 1200.0;         ///< J/(kg K)
   double initial_temperature = 300.0;    ///< K
+  /// A polydisperse layer's size classes, smallest first (empty: one class of
+  /// particle_diameter). Every class shares the parcel diameter.
+  std::vector<SizeClass> size_classes;
 
   // Coarse graining (eq. 11, §4): parcel diameter n_xy d; real particles per parcel per
   // metre of depth n_i = n_xy^2 n_z. Zero means derived from the layer: alpha_p A / (N V_p).

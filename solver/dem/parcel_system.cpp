@@ -69,6 +69,8 @@ void ParcelSystem::add_parcel(const ParcelInit& p) {
   omega[i] = p.omega;
   temperature[i] = p.temperature;
   diameter[i] = p.diameter;
+  real_diameter[i] = p.real_diameter;
+  size_class[i] = static_cast<double>(p.size_class);
   radius[i] = r;
   mass[i] = p.n_real * m_real;
   inertia[i] = p.n_real * I_real;

@@ -61,6 +61,7 @@ struct ParcelInit {
   double density = 980.0;         ///< kg/m^3 of the real particles
   double n_real = 1.0;            ///< real particles per parcel (per metre of depth)
   double temperature = 300.0;     ///< K
+  int size_class = 0;             ///< the layer's size class (DemConfig::size_classes)
 };
 
 /// The DEM's own counters and decisions, for checkpoints: with the parcel table's checkpointed

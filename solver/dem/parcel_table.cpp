@@ -48,6 +48,8 @@ const std::vector<ParcelTable::BuiltinColumn>& ParcelTable::builtin_columns() {
       state("omega", "rad/s", &T::omega, "angular_velocity"),
       state("temperature", "K", &T::temperature, "temperature"),
       state("diameter", "m", &T::diameter, "diameter"),
+      state("real_diameter", "m", &T::real_diameter, "particle_diameter"),
+      state("size_class", "1", &T::size_class, "size_class"),
       state("radius", "m", &T::radius),
       state("mass", "kg/m", &T::mass),
       state("inertia", "kg m", &T::inertia),

@@ -76,6 +76,10 @@ class ParcelTable {
   std::vector<double> omega;                 ///< rad/s, counter-clockwise positive
   std::vector<double> temperature;           ///< K
   std::vector<double> diameter;              ///< m, parcel
+  std::vector<double> real_diameter;         ///< m, the real particles the parcel stands for
+  /// The layer's size class the parcel belongs to (0 for a monodisperse layer). Held as a
+  /// double because every written parcel array is one; always a small whole number.
+  std::vector<double> size_class;
   std::vector<double> radius;                ///< m, parcel (contact lever arm)
   std::vector<double> mass;                  ///< kg/m, parcel (n_real m_real)
   std::vector<double> inertia;               ///< kg m, parcel (cylinder: mass r^2 / 2)

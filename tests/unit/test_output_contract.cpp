@@ -197,7 +197,7 @@ TEST_F(OutputContract, ParcelFileHoldsExactlyTheDocumentedArraysAndFieldData) {
   reader->SetFileName(last("parcels").string().c_str());
   reader->Update();
   ASSERT_EQ(reader->GetOutput()->GetNumberOfPoints(), 2404);
-  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNumberOfArrays(), 11);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetNumberOfArrays(), 13);
   expect_documented(reader->GetOutput(), reader->GetOutput()->GetPointData(),
                     "### Parcels: `vtk/parcels_NNNNNN.vtp`", "parcels.pvd", false);
 }
