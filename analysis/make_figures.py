@@ -12,6 +12,9 @@ into OUTDIR/figures/ whatever the present series allow:
   forces_<band>.png            band-averaged horizontal and vertical force parts and mean
                                height against time since shock arrival (Figs. 10-11 style)
   magnus_inputs_<band>.png     relative, particle and gas rotation (Fig. 12 style)
+  dust_cloud.png               the lifted dust against time: mass and share (per size class
+                               too), heights holding 50/90/99 % of it and the cloud top,
+                               the explosible area, temperatures, distances behind the shock
 A gas-only run has only shock_position. Exits 1 if OUTDIR/series holds no series.
 """
 import argparse
@@ -143,6 +146,49 @@ def magnus_inputs(series, out, band):
     return save(fig, out, "magnus_inputs_%s.png" % band)
 
 
+def dust_cloud(series, out):
+    t = series["time_s"] * 1e3
+    fig, axes = plt.subplots(5, 1, figsize=(7, 13), sharex=True)
+    ax = axes[0]
+    ax.plot(t, series["lifted_mass_kg_per_m"] * 1e3, "k-", label="all sizes")
+    classes = sorted({n.split("_")[0] for n in series if n.startswith("class")})
+    for c in classes:
+        ax.plot(t, series[c + "_lifted_mass_kg_per_m"] * 1e3, "--", label="size " + c[len("class"):])
+    ax.set_ylabel("lifted mass [g per m of span]")
+    share = ax.twinx()
+    share.plot(t, series["lifted_share_1"] * 100.0, color="tab:red", lw=0.8)
+    share.set_ylabel("share of the layer [%]", color="tab:red")
+    ax.set_title("Dust lifted above the initial layer top")
+    ax.legend(fontsize=7)
+    ax = axes[1]
+    for q, style in (("p50", "-"), ("p90", "--"), ("p99", ":")):
+        ax.plot(t, series["height_%s_m" % q] * 1e3, "k" + style, label="%s %% of the lifted mass below" % q[1:])
+    ax.plot(t, series["cloud_top_m"] * 1e3, "-", color="tab:blue", label="cloud top (concentration edge)")
+    ax.set_ylabel("height above layer top [mm]")
+    ax.set_title("How high the cloud reaches")
+    ax.legend(fontsize=7)
+    ax = axes[2]
+    ax.plot(t, series["explosible_area_m2"] * 1e6, "k.-")
+    ax.set_ylabel("area [mm$^2$]")
+    ax.set_title("Explosible area: cells above the layer at or over the explosible concentration")
+    ax = axes[3]
+    ax.plot(t, series["lifted_temperature_max_K"], "k-", label="largest")
+    ax.plot(t, series["lifted_temperature_mean_K"], "k--", label="mass-weighted mean")
+    ax.set_ylabel("temperature [K]")
+    ax.set_title("Temperature of the lifted dust")
+    ax.legend(fontsize=7)
+    ax = axes[4]
+    ax.plot(t, series["first_lifted_behind_shock_m"] * 1e3, "k-", label="first lifted column", marker=".")
+    ax.plot(t, series["densest_lifted_behind_shock_m"] * 1e3, "k--", label="densest lifted column", marker=".")
+    ax.set_ylabel("distance behind the shock [mm]")
+    ax.set_title("Where the lifting is, seen from the shock")
+    ax.set_xlabel("time [ms]")
+    ax.legend(fontsize=7)
+    for a in axes:
+        a.grid(alpha=0.3)
+    return save(fig, out, "dust_cloud.png")
+
+
 def save(fig, out, name):
     path = os.path.join(out, name)
     fig.tight_layout()
@@ -177,6 +223,8 @@ def main(argv):
             written.append(surface_height(series, out, args.max_curves))
         elif name == "surface_height_stations":
             written.append(surface_stations(series, out))
+        elif name == "dust_cloud":
+            written.append(dust_cloud(series, out))
         elif name.startswith("forces_"):
             band = name[len("forces_"):]
             written.append(forces(series, out, band))

@@ -171,7 +171,7 @@ class CatalystObserver final : public Observer {
     const auto t0 = std::chrono::steady_clock::now();
     gather_gas_cells(
         *view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
-        [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
+        &dust_concentration_of(view, concentration_), [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
     CatalystFrame f;
     f.time = view.time;
     f.step = view.step;
@@ -199,7 +199,8 @@ class CatalystObserver final : public Observer {
   CatalystFactory factory_ = nullptr;
   std::unique_ptr<CatalystPipelines> pipelines_;
   GasCellArrays gas_;  // reused: no reallocation after the first frame
-  Field2D vorticity_;  // for a view without the run's derived fields (made by hand)
+  Field2D vorticity_;      // for a view without the run's derived fields (made by hand)
+  Field2D concentration_;  // likewise
   /// insitu.catalyst.interval (simulated s) or interval_steps.
   Cadence frames_;
   long long gathered_ = 0;

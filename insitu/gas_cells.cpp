@@ -8,8 +8,8 @@
 namespace dustlift {
 
 void GasCellArrays::resize(std::size_t nx, std::size_t ny) {
-  for (auto* a :
-       {&density, &velocity_x, &velocity_y, &pressure, &temperature, &mach, &alpha_p, &vorticity})
+  for (auto* a : {&density, &velocity_x, &velocity_y, &pressure, &temperature, &mach, &alpha_p,
+                  &vorticity, &dust_concentration})
     a->resize(nx * ny);
 }
 
@@ -30,9 +30,15 @@ std::vector<double> GasCellArrays::y_centers() const {
 
 void GasCellArrays::check_sizes() const {
   const std::pair<const char*, const std::vector<double>*> arrays[] = {
-      {"density", &density},   {"velocity_x", &velocity_x},   {"velocity_y", &velocity_y},
-      {"pressure", &pressure}, {"temperature", &temperature}, {"mach", &mach},
-      {"alpha_p", &alpha_p},   {"vorticity", &vorticity}};
+      {"density", &density},
+      {"velocity_x", &velocity_x},
+      {"velocity_y", &velocity_y},
+      {"pressure", &pressure},
+      {"temperature", &temperature},
+      {"mach", &mach},
+      {"alpha_p", &alpha_p},
+      {"vorticity", &vorticity},
+      {"dust_concentration", &dust_concentration}};
   for (const auto& [name, a] : arrays)
     if (a->size() != cells())
       throw std::invalid_argument(std::string("GasCellArrays: ") + name + " has " +
@@ -41,12 +47,15 @@ void GasCellArrays::check_sizes() const {
 }
 
 void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
-                      const Field2D& vorticity, const std::function<double(int, int)>& sound_speed,
-                      GasCellArrays& out) {
+                      const Field2D& vorticity, const Field2D* dust_concentration,
+                      const std::function<double(int, int)>& sound_speed, GasCellArrays& out) {
   if (!gas.rho || !gas.u || !gas.v || !gas.p || !gas.T || !gas.alpha_g)
     throw std::invalid_argument("gather_gas_cells: a primitive field is missing");
   if (vorticity.size() != grid.size_with_ghosts())
     throw std::invalid_argument("gather_gas_cells: the vorticity is not a field of this grid");
+  if (dust_concentration != nullptr && dust_concentration->size() != grid.size_with_ghosts())
+    throw std::invalid_argument(
+        "gather_gas_cells: the dust concentration is not a field of this grid");
   out.x_nodes = grid.x().interior_faces();
   out.y_nodes = grid.y().interior_faces();
   const int nx = grid.nx(), ny = grid.ny();
@@ -63,6 +72,7 @@ void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2
       out.alpha_p[k] = alpha_p != nullptr ? (*alpha_p)(i, j) : 1.0 - (*gas.alpha_g)(i, j);
       out.mach[k] = std::hypot(u, v) / sound_speed(i, j);
       out.vorticity[k] = vorticity(i, j);
+      out.dust_concentration[k] = dust_concentration != nullptr ? (*dust_concentration)(i, j) : 0.0;
     }
   }
 }

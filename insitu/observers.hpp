@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "insitu/band_average.hpp"
+#include "insitu/dust_cloud.hpp"
 #include "insitu/parcel_arrays.hpp"
 #include "solver/sim/observer.hpp"
 
@@ -73,6 +74,14 @@ std::unique_ptr<Observer> make_probe_observer(ProbeOptions options);
 /// outermost parcels in x and the x below which 1 % and 99 % of the real particles lie
 /// (parcel_fronts.hpp). A particle curtain's upstream and downstream fronts.
 std::unique_ptr<Observer> make_parcel_fronts_observer();
+
+/// Series dust_cloud (docs/output.md): the lifted dust at each output (dust_cloud.hpp), its
+/// heights, temperatures, the explosible part of its concentration, and the distances of the
+/// first and the densest lifted grid column behind the shock (found as the shock-position
+/// observer finds it; NaN when `shock_along_x` is false or no shock is in the domain). The
+/// lifted shares divide by the layer's mass at the first output, kept in checkpoints.
+std::unique_ptr<Observer> make_dust_cloud_observer(DustCloudOptions options, ShockPositionOptions shock,
+                                                   bool shock_along_x);
 
 /// Window of the near-layer field series (paper Fig. 13).
 struct NearLayerOptions {

@@ -1,5 +1,6 @@
 #include "insitu/outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -102,11 +103,10 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
     if (scene.particles.layer.y_max <= y.center(y.cells() - 1))
       shock.y_min = scene.particles.layer.y_max;
   }
-  if (ic.axis == 'x') {
-    // A Riemann start with the high pressure on the right sends its shock to -x: skip.
-    const bool rightward = ic.kind != InitialCondition::Kind::Riemann || ic.left.p > ic.right.p;
-    if (rightward) observers.push_back(make_shock_position_observer(shock));
-  }
+  // A Riemann start with the high pressure on the right sends its shock to -x: skip.
+  const bool rightward =
+      ic.axis == 'x' && (ic.kind != InitialCondition::Kind::Riemann || ic.left.p > ic.right.p);
+  if (rightward) observers.push_back(make_shock_position_observer(shock));
   if (!out.probes.empty())
     observers.push_back(make_probe_observer({out.probes, out.probe_interval}));
   if (!scene.particles.enabled) return observers;
@@ -137,6 +137,15 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
     observers.push_back(make_band_force_observer(bands, band_arrays_of));
   }
   if (out.parcel_fronts) observers.push_back(make_parcel_fronts_observer());
+  if (out.dust_cloud) {
+    DustCloudOptions cloud;
+    cloud.layer_top = L.y_max;
+    cloud.lift_height = out.cloud_lift_height;
+    cloud.explosible_concentration = 1e-3 * out.explosible_concentration;  // g/m^3 -> kg/m^3
+    cloud.edge_concentration = 1e-3 * out.cloud_edge_concentration;
+    cloud.classes = std::max<int>(1, static_cast<int>(scene.particles.size_classes.size()));
+    observers.push_back(make_dust_cloud_observer(cloud, shock, rightward));
+  }
   return observers;
 }
 

@@ -11,4 +11,8 @@ namespace dustlift {
 /// neighbours' cells, so every piece holds the one-rank values.
 const Field2D& vorticity_of(const StateView& view, Field2D& scratch);
 
+/// The dust concentration rho_p alpha_p (kg/m^3) of what the view shows, made once per step
+/// like the vorticity (or into `scratch` for a view made by hand); zeros without parcels.
+const Field2D& dust_concentration_of(const StateView& view, Field2D& scratch);
+
 }  // namespace dustlift

@@ -73,6 +73,7 @@ void set_gas_cell_data(vtkRectilinearGrid* grid, const GasCellArrays& gas) {
   cd->AddArray(wrapped_array("mach", gas.mach));
   cd->AddArray(wrapped_array("alpha_p", gas.alpha_p));
   cd->AddArray(wrapped_array("vorticity", gas.vorticity));
+  cd->AddArray(wrapped_array("dust_concentration", gas.dust_concentration));
   cd->SetActiveScalars("pressure");
   grid->Modified();
 }

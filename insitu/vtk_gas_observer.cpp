@@ -32,7 +32,7 @@ class VtkGasWriter final : public Observer {
     const auto sound_speed = [&](int i, int j) { return sound_speed_(view, i, j); };
     if (view.piece == nullptr) {
       gather_gas_cells(*view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
-                       sound_speed, cells_);
+                       &dust_concentration_of(view, concentration_), sound_speed, cells_);
       write_gas_vtr(cells_, files_->next_path(view.time), vtk_file_info_of(view));
       files_->commit(view.time);
       return;
@@ -42,7 +42,8 @@ class VtkGasWriter final : public Observer {
         *files_, piece, view.time, "vtr",
         [&](const std::string& path) {
           gather_gas_cells(*view.grid, view.primitives, view.alpha_p,
-                           vorticity_of(view, vorticity_), sound_speed, cells_);
+                           vorticity_of(view, vorticity_),
+                           &dust_concentration_of(view, concentration_), sound_speed, cells_);
           write_gas_vtr(cells_, path, vtk_file_info_of(view),
                         piece.column_bounds[static_cast<std::size_t>(piece.rank)]);
         },
@@ -80,7 +81,8 @@ class VtkGasWriter final : public Observer {
   std::unique_ptr<VtkSeriesFiles> files_;
   VtkSeriesFiles::State restored_;
   GasCellArrays cells_;  // reused: no reallocation after the first output
-  Field2D vorticity_;    // for a view without the run's derived fields (made by hand)
+  Field2D vorticity_;      // for a view without the run's derived fields (made by hand)
+  Field2D concentration_;  // likewise
 };
 
 }  // namespace

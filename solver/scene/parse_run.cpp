@@ -159,7 +159,8 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   t.expect_keys({"interval", "vtk", "shock_threshold", "checkpoint_interval",
                  "checkpoint_wall_interval", "surface_threshold", "surface_stations",
                  "band_bin_width", "band_duration", "contact_window", "bands", "probes",
-                 "probe_interval", "parcel_fronts"});
+                 "probe_interval", "parcel_fronts", "dust_cloud", "cloud_lift_height",
+                 "explosible_concentration", "cloud_edge_concentration"});
   out.interval = t.number("interval", out.interval, Range::non_negative());
   out.vtk = t.boolean("vtk", out.vtk);
   out.shock_threshold = t.number("shock_threshold", out.shock_threshold, Range::open(0.0, 10.0));
@@ -170,7 +171,8 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   parse_probes(t, out, grid, dem.enabled);
   if (!dem.enabled) {
     for (const char* key : {"surface_threshold", "surface_stations", "band_bin_width",
-                            "band_duration", "contact_window", "bands", "parcel_fronts"}) {
+                            "band_duration", "contact_window", "bands", "parcel_fronts", "dust_cloud",
+                            "cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"}) {
       if (t.has(key)) t.fail(key, "only used with [particles]");
     }
     t.finish();
@@ -190,6 +192,18 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   out.contact_window = t.number("contact_window", out.contact_window, Range::positive());
   parse_bands(t, out, L);
   out.parcel_fronts = t.boolean("parcel_fronts", out.parcel_fronts);
+  out.dust_cloud = t.boolean("dust_cloud", out.dust_cloud);
+  if (!out.dust_cloud) {
+    for (const char* key : {"cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"})
+      if (t.has(key)) t.fail(key, "only used with dust_cloud = true");
+  } else {
+    out.cloud_lift_height = t.derived_number("cloud_lift_height", dem.particle_diameter,
+                                             "particles.diameter (one particle diameter)", Range::non_negative());
+    out.explosible_concentration =
+        t.number("explosible_concentration", out.explosible_concentration, Range::positive());
+    out.cloud_edge_concentration =
+        t.number("cloud_edge_concentration", out.cloud_edge_concentration, Range::positive());
+  }
   t.finish();
 }
 

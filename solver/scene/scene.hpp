@@ -76,6 +76,18 @@ struct OutputConfig {
   std::vector<ProbeConfig> probes;
   double probe_interval = 0.0;  ///< s of simulated time between probe samples; 0: every step
   bool parcel_fronts = false;   ///< series parcel_fronts (a curtain's fronts) at each output
+  // The dust cloud (series dust_cloud, docs/output.md), at each output of a scene with particles.
+  bool dust_cloud = true;
+  /// m: a parcel counts as lifted when its centre is higher than this above the layer
+  /// rectangle's top; default: one particle diameter (the mass median of a distribution).
+  double cloud_lift_height = 0.0;
+  /// g/m^3: the cloud's explosible part is where the dust concentration reaches this (a
+  /// minimum explosible concentration; 50 g/m^3 lies in the 30-100 g/m^3 typical of coal,
+  /// grain and flour dusts, Eckhoff 2003, Dust Explosions in the Process Industries, ch. 1).
+  double explosible_concentration = 50.0;
+  /// g/m^3: the cloud's top is the highest cell row above the layer where the concentration
+  /// still reaches this.
+  double cloud_edge_concentration = 1.0;
 };
 
 /// ParaView Catalyst in situ (docs/catalyst.md): Python pipelines run on the live state.

@@ -109,7 +109,7 @@ StateView Simulation::view(const std::string& output_dir) const {
   v.output_dir = output_dir;
   v.provenance = &provenance_;
   v.log = log_ ? &log_ : nullptr;
-  derived_whole_.show(v.grid, v.primitives, step_);
+  derived_whole_.show(v.grid, v.primitives, v.alpha_p, particle_density(), step_);
   v.derived = &derived_whole_;
   return v;
 }
@@ -124,7 +124,7 @@ StateView Simulation::piece_view(const std::string& output_dir) const {
   v.parcels = parcels_.get();
   v.alpha_p = coupling_ ? &coupling_->alpha_p() : nullptr;
   v.piece = &slabs_->piece();
-  derived_piece_.show(v.grid, v.primitives, step_);
+  derived_piece_.show(v.grid, v.primitives, v.alpha_p, particle_density(), step_);
   v.derived = &derived_piece_;
   return v;
 }

@@ -134,6 +134,8 @@ class Simulation {
  private:
   friend class SlabDriver;  // replaces the slab's grid and gas when the cuts move
   bool any_rank(bool value) const;
+  /// kg/m^3 of the real particles (0 in a gas-only scene): the dust concentration's factor.
+  double particle_density() const { return scene_.particles.enabled ? scene_.particles.density : 0.0; }
   /// Builds the snapshot (collectively) and hands it to the checkpoint keepers.
   void make_checkpoint(const RunClock& now);
   /// The view an observer's calls get: its piece on several ranks when it writes pieces.

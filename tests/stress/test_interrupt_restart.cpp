@@ -95,7 +95,7 @@ void expect_same_run(const fs::path& reference, const fs::path& continued) {
     EXPECT_EQ(read_bytes(f.path()), read_bytes(continued / "series" / f.path().filename()))
         << f.path().filename();
   }
-  EXPECT_EQ(files, 7u);  // shock, surface (2), near layer, two bands, probes
+  EXPECT_EQ(files, 8u);  // shock, surface (2), near layer, two bands, probes, dust cloud
   expect_consistent_collection(continued, "gas");
   expect_consistent_collection(continued, "parcels");
 }

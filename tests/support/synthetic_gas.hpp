@@ -22,6 +22,7 @@ inline GasCellArrays synthetic_gas() {
     g.mach[k] = 0.001 * s;
     g.alpha_p[k] = s / 100.0;
     g.vorticity[k] = 1e4 * std::sin(s);
+    g.dust_concentration[k] = 2.5 * s;
   }
   return g;
 }

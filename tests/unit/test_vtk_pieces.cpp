@@ -59,6 +59,7 @@ GasCellArrays columns_of(const GasCellArrays& whole, std::size_t i0, std::size_t
   copy(whole.mach, p.mach);
   copy(whole.alpha_p, p.alpha_p);
   copy(whole.vorticity, p.vorticity);
+  copy(whole.dust_concentration, p.dust_concentration);
   return p;
 }
 
@@ -90,7 +91,7 @@ TEST(GasPieces, TheSummaryJoinsThePiecesIntoTheWholeGrid) {
   EXPECT_EQ(values(grid->GetXCoordinates(), 0), whole.x_nodes);
   EXPECT_EQ(values(grid->GetYCoordinates(), 0), whole.y_nodes);
   vtkCellData* cd = grid->GetCellData();
-  EXPECT_EQ(cd->GetNumberOfArrays(), 7);
+  EXPECT_EQ(cd->GetNumberOfArrays(), 8);
   EXPECT_EQ(values(cd->GetArray("density"), 0), whole.density);
   EXPECT_EQ(values(cd->GetArray("velocity"), 0), whole.velocity_x);
   EXPECT_EQ(values(cd->GetArray("velocity"), 1), whole.velocity_y);
@@ -122,7 +123,8 @@ TEST(GasPieces, ASlabsEdgeColumnsReadItsGhostsForTheWholeGridsVorticity) {
     return w;
   };
   GasCellArrays one;
-  gather_gas_cells(whole, {&rho, &u, &v, &p, &T, &ag}, nullptr, vorticity(whole, u, v), sound, one);
+  gather_gas_cells(whole, {&rho, &u, &v, &p, &T, &ag}, nullptr, vorticity(whole, u, v), nullptr, sound,
+                   one);
   const std::vector<int> bounds{0, 3, 7};
   for (int r = 0; r < 2; ++r) {
     const Grid2D slab =
@@ -139,8 +141,8 @@ TEST(GasPieces, ASlabsEdgeColumnsReadItsGhostsForTheWholeGridsVorticity) {
     // The slab's axis carries the whole axis's derivative stencils: at a cut they reach into
     // the ghost column, which holds the neighbour's cell.
     GasCellArrays piece;
-    gather_gas_cells(slab, {&sr, &su, &sv, &sp, &sT, &sa}, nullptr, vorticity(slab, su, sv), sound,
-                     piece);
+    gather_gas_cells(slab, {&sr, &su, &sv, &sp, &sT, &sa}, nullptr, vorticity(slab, su, sv), nullptr,
+                     sound, piece);
     const GasCellArrays expected =
         columns_of(one, static_cast<std::size_t>(bounds[static_cast<std::size_t>(r)]),
                    static_cast<std::size_t>(bounds[static_cast<std::size_t>(r) + 1]));

@@ -90,7 +90,7 @@ TEST(VtkGasWriter, RectilinearGridRoundTripsEveryArray) {
   expect_array(grid->GetXCoordinates(), gas.x_nodes, "x nodes");
   expect_array(grid->GetYCoordinates(), gas.y_nodes, "y nodes");
   vtkCellData* cd = grid->GetCellData();
-  EXPECT_EQ(cd->GetNumberOfArrays(), 7);
+  EXPECT_EQ(cd->GetNumberOfArrays(), 8);
   expect_array(cd->GetArray("density"), gas.density, "density");
   expect_vector(cd->GetArray("velocity"), gas.velocity_x, gas.velocity_y, "velocity");
   expect_array(cd->GetArray("pressure"), gas.pressure, "pressure");
@@ -98,6 +98,7 @@ TEST(VtkGasWriter, RectilinearGridRoundTripsEveryArray) {
   expect_array(cd->GetArray("mach"), gas.mach, "mach");
   expect_array(cd->GetArray("alpha_p"), gas.alpha_p, "alpha_p");
   expect_array(cd->GetArray("vorticity"), gas.vorticity, "vorticity");
+  expect_array(cd->GetArray("dust_concentration"), gas.dust_concentration, "dust_concentration");
   // Cell (i, j) = (3, 2) is VTK cell 3 + 7*2 and lies between the matching nodes.
   double bounds[6];
   grid->GetCell(3 + 7 * 2)->GetBounds(bounds);
@@ -127,8 +128,11 @@ TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
   GasCellArrays out;
   Field2D w(grid);
   vorticity_z_rows(grid, u, v, 0, grid.ny(), w);
+  Field2D c(grid);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) c(i, j) = 1.5 * i + 7.0 * j;
   gather_gas_cells(
-      grid, prims, nullptr, w, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
+      grid, prims, nullptr, w, &c, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
   ASSERT_EQ(out.nx(), 4u);
   ASSERT_EQ(out.ny(), 3u);
   EXPECT_EQ(out.x_nodes, grid.x().interior_faces());
@@ -138,6 +142,7 @@ TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
       EXPECT_NEAR(out.mach[k], std::hypot(u(i, j), v(i, j)) / (340.0 + i + 2.0 * j), 1e-15);
       EXPECT_NEAR(out.alpha_p[k], 0.01 * (i + 10 * j), 1e-15);
       EXPECT_NEAR(out.vorticity[k], 5.0 - 2.0, 1e-11);
+      EXPECT_EQ(out.dust_concentration[k], 1.5 * i + 7.0 * j);
       EXPECT_EQ(out.velocity_x[k], u(i, j));
     }
 }
