@@ -85,6 +85,13 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
   if (!xs.empty() && std::isfinite(r.shock_x)) {
     r.lifting_delay = lifting_delay_distance(xs, hs, r.shock_x, layer_top, lift_threshold);
   }
+  r.cloud.assign(kSummaryCloudColumns.size(), kNaN);
+  if (const auto cloud = read_if_present(h5, "dust_cloud"); cloud && cloud->rows() > 0) {
+    for (std::size_t c = 0; c < kSummaryCloudColumns.size(); ++c) {
+      const int k = column_of(*cloud, kSummaryCloudColumns[c].series);
+      if (k >= 0) r.cloud[c] = cloud->column(static_cast<std::size_t>(k)).back();
+    }
+  }
   for (const BandConfig& band : scene.output.bands) {
     std::vector<ForcePeak> peaks(kSummaryForceColumns.size(), ForcePeak{kNaN, kNaN});
     if (const auto t = read_if_present(h5, "forces_" + band.name)) {

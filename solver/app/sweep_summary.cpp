@@ -16,6 +16,7 @@ std::vector<SeriesColumn> numeric_columns(const Scene& base, const std::vector<d
                               {"end_time", "s"},  {"shock_x", "m"},     {"lifting_delay", "m"},
                               {"layer_top", "m"}};
   for (double x : stations) c.push_back({"h_at_x" + number_in_identifier(x), "m"});
+  for (const SummaryCloudColumn& cloud : kSummaryCloudColumns) c.push_back({cloud.summary, cloud.unit});
   for (const BandConfig& band : base.output.bands) {
     for (const std::string& component : kSummaryForceColumns) {
       c.push_back({band.name + "_" + component + "_peak", "N"});
@@ -64,6 +65,8 @@ void SweepSummary::add(const SweepRun& run, const RunOutcome& outcome, const Run
                           outcome.wall_seconds, static_cast<double>(outcome.steps), outcome.time,
                           result(results.shock_x), result(results.lifting_delay), result(results.layer_top)};
   for (double h : results.heights) row.push_back(result(h));
+  for (std::size_t c = 0; c < kSummaryCloudColumns.size(); ++c)
+    row.push_back(c < results.cloud.size() ? result(results.cloud[c]) : nan);
   for (const auto& band : results.peaks) {
     for (const ForcePeak& p : band) {
       row.push_back(result(p.value));

@@ -213,6 +213,15 @@ TEST(Sweep, TwoByTwoSweepWritesFoldersSeriesSummaryAndPlot) {
     EXPECT_LT(extreme, 0.0);
     EXPECT_EQ(std::stod(row[column(h, "surface_drag_y_peak_N")]), extreme);
     EXPECT_EQ(std::stod(row[column(h, "surface_drag_y_peak_tau_s")]), at);
+    // The cloud columns are the last row of the run's dust_cloud series.
+    const auto cloud = read_csv(run_dir / "series" / "dust_cloud.csv");
+    for (const auto& [summary, series] : std::vector<std::pair<std::string, std::string>>{
+             {"cloud_lifted_mass_kg_per_m", "lifted_mass_kg_per_m"},
+             {"cloud_lifted_share_1", "lifted_share_1"},
+             {"cloud_height_p90_m", "height_p90_m"},
+             {"cloud_top_m", "cloud_top_m"},
+             {"cloud_explosible_area_m2", "explosible_area_m2"}})
+      EXPECT_EQ(row[column(h, summary)], cloud.back()[column(cloud[0], series)]) << summary;
   }
   // The same rows in HDF5: numbers with units and the run names as strings.
   const std::string h5 = (out / "summary.h5").string();

@@ -1,0 +1,106 @@
+#!/usr/bin/python3
+"""The dust clouds of a sweep's runs side by side (PNG, matplotlib Agg).
+
+Usage: /usr/bin/python3 analysis/plot_cloud_study.py SWEEPDIR [--out FILE] [--table FILE]
+
+Reads SWEEPDIR/summary.csv (the runs and their varied keys) and each run's
+series/dust_cloud.csv, and draws against time, one curve per run: the lifted share of the
+layer, the heights under which 90 % of the lifted mass lies, the explosible area and the
+distance of the densest lifted column behind the shock. Writes SWEEPDIR/dust_cloud.png
+(or --out) and prints a Markdown table of each run's cloud at its last output (also written
+to --table when given). Exits 1 when no run has a dust-cloud series.
+"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], [r for r in rows[1:] if r]
+    return header, body
+
+
+def read_series(path):
+    header, body = read_csv(path)
+    data = np.array([[float(v) for v in r] for r in body], dtype=float)
+    return {name: data[:, k] for k, name in enumerate(header)}
+
+
+def label_of(row, keys):
+    """'initial_mach=1.5' style label from the varied keys' values."""
+    return ", ".join("%s = %s" % (k.split("_")[-1], row[k]) for k in keys)
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("sweepdir")
+    parser.add_argument("--out", help="PNG path (default SWEEPDIR/dust_cloud.png)")
+    parser.add_argument("--table", help="also write the Markdown table here")
+    args = parser.parse_args(argv)
+    header, body = read_csv(os.path.join(args.sweepdir, "summary.csv"))
+    keys = header[1:header.index("run_index_1")]
+    runs = []
+    for r in body:
+        row = dict(zip(header, r))
+        path = os.path.join(args.sweepdir, row["run"], "series", "dust_cloud.csv")
+        if os.path.exists(path):
+            runs.append((row, read_series(path)))
+    if not runs:
+        print("plot_cloud_study.py: no run in %s has a dust-cloud series" % args.sweepdir, file=sys.stderr)
+        return 1
+
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True)
+    for row, s in runs:
+        t = s["time_s"] * 1e3
+        label = label_of(row, keys)
+        axes[0, 0].plot(t, s["lifted_share_1"] * 100.0, ".-", label=label)
+        axes[0, 1].plot(t, s["height_p90_m"] * 1e3, ".-", label=label)
+        axes[1, 0].plot(t, s["explosible_area_m2"] * 1e6, ".-", label=label)
+        axes[1, 1].plot(t, s["densest_lifted_behind_shock_m"] * 1e3, ".-", label=label)
+    titles = [("Lifted share of the layer's mass", "lifted share [%]"),
+              ("Height holding 90 % of the lifted mass", "height above layer top [mm]"),
+              ("Area at or above the explosible concentration", "area [mm$^2$]"),
+              ("Densest lifted column behind the shock", "distance [mm]")]
+    for ax, (title, ylabel) in zip(axes.flat, titles):
+        ax.set_title(title)
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.3)
+    for ax in axes[1]:
+        ax.set_xlabel("time [ms]")
+    axes[0, 0].legend(fontsize=8)
+    fig.tight_layout()
+    out = args.out or os.path.join(args.sweepdir, "dust_cloud.png")
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    print("wrote", out)
+
+    lines = ["| run | t [ms] | lifted [g/m] | share [%] | h50 / h90 / h99 [mm] | cloud top [mm] | "
+             "explosible area [mm²] | lifted T max / mean [K] | densest column behind shock [mm] |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for row, s in runs:
+        k = -1
+        lines.append("| %s | %.3f | %.3g | %.3g | %.3g / %.3g / %.3g | %.3g | %.3g | %.1f / %.1f | %.3g |" % (
+            label_of(row, keys), s["time_s"][k] * 1e3, s["lifted_mass_kg_per_m"][k] * 1e3,
+            s["lifted_share_1"][k] * 100.0, s["height_p50_m"][k] * 1e3, s["height_p90_m"][k] * 1e3,
+            s["height_p99_m"][k] * 1e3, s["cloud_top_m"][k] * 1e3, s["explosible_area_m2"][k] * 1e6,
+            s["lifted_temperature_max_K"][k], s["lifted_temperature_mean_K"][k],
+            s["densest_lifted_behind_shock_m"][k] * 1e3))
+    table = "\n".join(lines)
+    print(table)
+    if args.table:
+        with open(args.table, "w") as f:
+            f.write(table + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
