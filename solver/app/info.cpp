@@ -1,9 +1,10 @@
 #include "solver/app/info.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <fmt/core.h>
 #include <omp.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "solver/dem/layer_generator.hpp"
 #include "solver/parallel/communicator.hpp"
@@ -22,7 +23,8 @@ double estimated_steps(const Simulation& sim) {
       sv = std::max(sv, std::abs((*p.v)(i, j)) + c);
     }
   }
-  const double worst = sim.scene().gas.scheme.cfl / (su / g.x().min_width() + sv / g.y().min_width());
+  const double worst =
+      sim.scene().gas.scheme.cfl / (su / g.x().min_width() + sv / g.y().min_width());
   const double dt = std::min(worst, sim.gas().stable_dt());  // the viscous limit too
   return std::ceil(sim.scene().run.end_time / dt);
 }
@@ -32,32 +34,43 @@ void print_info(const Scene& scene, const Simulation& sim) {
   fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
   fmt::print("effects on:\n");
   for (const auto& e : sim.enabled_effects()) fmt::print("  - {}\n", e);
-  fmt::print("grid: {} x {} cells = {} cells; x in [{:g}, {:g}] m, y in [{:g}, {:g}] m; "
-             "min dx = {:g} m, min dy = {:g} m\n",
-             g.nx(), g.ny(), g.interior_cells(), g.x().start(), g.x().end(), g.y().start(),
-             g.y().end(), g.x().min_width(), g.y().min_width());
+  fmt::print(
+      "grid: {} x {} cells = {} cells; x in [{:g}, {:g}] m, y in [{:g}, {:g}] m; "
+      "min dx = {:g} m, min dy = {:g} m\n",
+      g.nx(), g.ny(), g.interior_cells(), g.x().start(), g.x().end(), g.y().start(), g.y().end(),
+      g.x().min_width(), g.y().min_width());
   const ParcelSystem* parcels = sim.parcels();
   if (parcels != nullptr) {
-    fmt::print("parcels: {}; DEM sub-step (eq. 18, nu_DEM {:g}) = {:.4g} s, ~{} per CFD step\n", parcels->size(),
-               scene.particles.courant, parcels->stable_time_step(), parcels->substeps_for(sim.gas().stable_dt()));
+    fmt::print("parcels: {}; DEM sub-step (eq. 18, nu_DEM {:g}) = {:.4g} s, ~{} per CFD step\n",
+               parcels->size(), scene.particles.courant, parcels->stable_time_step(),
+               parcels->substeps_for(sim.gas().stable_dt()));
     fmt::print("{}\n", describe_layer(scene.particles));
-    if (layer_settles(scene.particles.layer)) fmt::print("{}\n", describe_bed(*parcels, scene.particles.layer));
+    if (layer_settles(scene.particles.layer))
+      fmt::print("{}\n", describe_bed(*parcels, scene.particles.layer));
   } else {
     fmt::print("parcels: 0 (gas only)\n");
   }
   fmt::print("memory: about {} (estimate)\n",
-             format_bytes(estimated_run_bytes(static_cast<double>(g.interior_cells()),
-                                              parcels != nullptr ? static_cast<double>(parcels->size()) : 0.0)));
+             format_bytes(estimated_run_bytes(
+                 static_cast<double>(g.interior_cells()),
+                 parcels != nullptr ? static_cast<double>(parcels->size()) : 0.0)));
   // How it can run in parallel (docs/parallel.md): threads always, ranks when built with MPI.
+  // Parcels are split over ranks with the grid, except in a periodic channel.
+  const bool periodic = scene.gas.boundary.left == BoundaryKind::Periodic;
   fmt::print("parallel: OpenMP up to {} threads (--threads); {}\n", omp_get_max_threads(),
              !built_with_mpi() ? "MPI: not in this build"
+             : parcels != nullptr && periodic
+                 ? "MPI: in this build, but a periodic channel with particles runs on one rank"
              : parcels != nullptr
-                 ? "MPI: in this build, for scenes without particles (this one has them: one rank)"
+                 ? "MPI: mpirun -np N dustlift run SCENE runs x-slabs of this grid, each rank with "
+                   "the parcels in its slab"
                  : "MPI: mpirun -np N dustlift run SCENE runs x-slabs of this grid");
   const double dt0 = sim.gas().stable_dt();
-  fmt::print("time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f} "
-             "(the fastest gas at t = 0 on the smallest cells; {:.0f} at the initial dt)\n",
-             scene.run.end_time, scene.gas.scheme.cfl, dt0, estimated_steps(sim), std::ceil(scene.run.end_time / dt0));
+  fmt::print(
+      "time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f} "
+      "(the fastest gas at t = 0 on the smallest cells; {:.0f} at the initial dt)\n",
+      scene.run.end_time, scene.gas.scheme.cfl, dt0, estimated_steps(sim),
+      std::ceil(scene.run.end_time / dt0));
   fmt::print("\n{}", scene.resolved_toml);
 }
 

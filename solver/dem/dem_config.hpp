@@ -98,6 +98,9 @@ struct SizeClass {
 
 struct DemConfig {
   bool enabled = false;  ///< false: a gas-only scene, no parcel code runs
+  /// The scene says `enabled = false` (e.g. `--set particles.enabled=false`): the dust is
+  /// switched off on purpose, and the settings that only concern it are left unread.
+  bool switched_off = false;
 
   // Real particles (Table 2).
   double particle_diameter = 100e-6;     ///< m

@@ -16,7 +16,8 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
                  "rotation_torque", "torque_stokes_below", "heat_transfer", "interpolation",
                  "influence_width", "max_volume_fraction"});
   if (!dem.enabled) {
-    if (t.present()) t.fail("two_way", "a [coupling] section needs [particles]");
+    if (t.present() && !dem.switched_off)
+      t.fail("two_way", "a [coupling] section needs [particles]");
     return;
   }
   c.two_way = t.boolean("two_way", c.two_way);

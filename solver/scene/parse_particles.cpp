@@ -56,7 +56,10 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                  "real_per_parcel", "contact", "wall_contact", "courant", "skin", "fast_skin_substeps", "gravity", "g"});
   dem.enabled = t.boolean("enabled", t.present());
   if (!dem.enabled) {
-    t.finish();
+    // Switched off on purpose: the rest of the section (and the dust's coupling and output
+    // keys) stays as written, unread, so one override turns the dust off.
+    dem.switched_off = t.has("enabled");
+    if (!dem.switched_off) t.finish();
     return;
   }
   dem.particle_diameter = t.number("diameter", dem.particle_diameter, Range::positive());

@@ -170,9 +170,12 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
       t.number("checkpoint_wall_interval", out.checkpoint_wall_interval, Range::non_negative());
   parse_probes(t, out, grid, dem.enabled);
   if (!dem.enabled) {
-    for (const char* key : {"surface_threshold", "surface_stations", "band_bin_width",
-                            "band_duration", "contact_window", "bands", "parcel_fronts", "dust_cloud",
-                            "cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"}) {
+    // Dust switched off on purpose (particles.enabled = false): its output keys stay unread.
+    if (dem.switched_off) return;
+    for (const char* key :
+         {"surface_threshold", "surface_stations", "band_bin_width", "band_duration",
+          "contact_window", "bands", "parcel_fronts", "dust_cloud", "cloud_lift_height",
+          "explosible_concentration", "cloud_edge_concentration"}) {
       if (t.has(key)) t.fail(key, "only used with [particles]");
     }
     t.finish();
@@ -194,11 +197,13 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   out.parcel_fronts = t.boolean("parcel_fronts", out.parcel_fronts);
   out.dust_cloud = t.boolean("dust_cloud", out.dust_cloud);
   if (!out.dust_cloud) {
-    for (const char* key : {"cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"})
+    for (const char* key :
+         {"cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"})
       if (t.has(key)) t.fail(key, "only used with dust_cloud = true");
   } else {
-    out.cloud_lift_height = t.derived_number("cloud_lift_height", dem.particle_diameter,
-                                             "particles.diameter (one particle diameter)", Range::non_negative());
+    out.cloud_lift_height =
+        t.derived_number("cloud_lift_height", dem.particle_diameter,
+                         "particles.diameter (one particle diameter)", Range::non_negative());
     out.explosible_concentration =
         t.number("explosible_concentration", out.explosible_concentration, Range::positive());
     out.cloud_edge_concentration =

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "solver/gas/shock_relations.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/slab_driver.hpp"
 
@@ -52,6 +53,18 @@ std::vector<std::string> Simulation::enabled_effects() const {
                 "change at that level)");
   else
     e.push_back("skipping at rest: exact (bitwise the same results as without)");
+  const InitialCondition& ic = scene_.initial;
+  if (ic.kind == InitialCondition::Kind::Shock) {
+    // The Rankine-Hugoniot state the inflow holds: what the run's shock should settle to.
+    const ShockJump j = normal_shock(ic.state, ic.mach, g.thermo, ic.axis);
+    std::ostringstream s;
+    s.precision(4);
+    s << "shock: Mach " << ic.mach << " along +" << ic.axis << " at " << j.shock_speed
+      << " m/s into " << ic.state.p * 1e-3 << " kPa, " << j.pre_temperature << " K; behind it "
+      << j.post.p * 1e-3 << " kPa, " << j.post_temperature << " K, " << j.post.rho
+      << " kg/m^3, gas at " << (ic.axis == 'x' ? j.post.u : j.post.v) << " m/s";
+    e.push_back(s.str());
+  }
   if (!scene_.particles.enabled) {
     e.push_back("particles: none (gas only)");
     return e;
@@ -105,9 +118,9 @@ std::string Simulation::work_summary() const {
   if (parcels_) {
     const auto& c = coupling_->timings();
     const auto& d = parcels_->timings();
-    s << ", coupling sample " << c.sample << " s, implicit exchange " << c.implicit_exchange << " s, deposit "
-      << c.deposit << " s, DEM contacts " << d.contacts << " s, integration " << d.integrate
-      << " s, rebuilds " << d.rebuild << " s";
+    s << ", coupling sample " << c.sample << " s, implicit exchange " << c.implicit_exchange
+      << " s, deposit " << c.deposit << " s, DEM contacts " << d.contacts << " s, integration "
+      << d.integrate << " s, rebuilds " << d.rebuild << " s";
   }
   s << ", observers " << timings_.observers << " s, checkpoints " << timings_.checkpoints << " s";
   if (slabs_) {

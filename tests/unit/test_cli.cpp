@@ -1,21 +1,20 @@
 // The command line end to end: exit codes, error messages naming the key, no partial output.
 #include <gtest/gtest.h>
-
-#include <filesystem>
-#include <fstream>
-#include <regex>
-#include <sstream>
-
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkNew.h>
 #include <vtkRectilinearGrid.h>
 #include <vtkXMLRectilinearGridReader.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
 #include "solver/app/info.hpp"
 #include "solver/gas/exact_riemann.hpp"
 #include "solver/sim/simulation.hpp"
-
 #include "support/run_cli.hpp"
 
 namespace fs = std::filesystem;
@@ -44,18 +43,74 @@ TEST(Cli, InfoPrintsEffectsGridAndSteps) {
 #endif
 }
 
+TEST(Cli, InfoSaysRanksSplitTheParcelsToo) {
+  const auto r = run_cli("info " + std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+#ifdef DUSTLIFT_TEST_MPIEXEC
+  EXPECT_NE(r.output.find("each rank with the parcels in its slab"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("for scenes without particles"), std::string::npos) << r.output;
+#else
+  EXPECT_NE(r.output.find("MPI: not in this build"), std::string::npos) << r.output;
+#endif
+}
+
+TEST(Cli, InfoAndTheRunLogGiveTheShockSpeedAndThePostShockState) {
+  const auto r = run_cli("info " + std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto at = r.output.find("shock: Mach 1.44 along +x at ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  // Mach 1.44 into 101 kPa, 300 K air (gamma 1.4 at 300 K): W = 1.44 sqrt(1.4 * 287.1 * 300)
+  // = 501 m/s (R = 288.2 J/(kg K) of the O2:N2 = 1:3.76 mixture), p2 = p1 (1 + 2.8 / 2.4 (M^2 - 1))
+  // = 227.5 kPa, T2 = 384.2 K (ideal-gas relations;
+  // the thermally perfect solve differs by < 0.3 %).
+  const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+  double speed = 0, p1 = 0, T1 = 0, p2 = 0, T2 = 0;
+  ASSERT_EQ(
+      std::sscanf(
+          line.c_str(),
+          "shock: Mach 1.44 along +x at %lf m/s into %lf kPa, %lf K; behind it %lf kPa, %lf K",
+          &speed, &p1, &T1, &p2, &T2),
+      5)
+      << line;
+  EXPECT_NEAR(speed, 501.0, 1.5);
+  EXPECT_EQ(p1, 101.0);
+  EXPECT_NEAR(p2, 227.5, 0.7);
+  EXPECT_NEAR(T2, 384.2, 1.2);
+}
+
+TEST(Cli, OneOverrideSwitchesTheDustOff) {
+  // The quickstart's [particles], [coupling] and its dust outputs stay as written, unread.
+  const auto r = run_cli("info " + std::string(DUSTLIFT_SOURCE_DIR) +
+                         "/cases/quickstart.toml --set particles.enabled=false");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("parcels: 0 (gas only)"), std::string::npos) << r.output;
+  // Without the switch, a [coupling] section with no [particles] is still refused.
+  const auto dir = fresh_dir("dust_off");
+  write_file(dir / "s.toml",
+             "[run]\nend_time = 1e-5\n[grid.x]\nstart = 0.0\nend = 0.01\ncells = 10\n"
+             "[grid.y]\nstart = 0.0\nend = 0.01\ncells = 10\n[initial]\nkind = \"uniform\"\n"
+             "state = { p = 1e5, T = 300.0 }\n[coupling]\ndrag = true\n");
+  const auto refused = run_cli("info " + (dir / "s.toml").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("needs [particles]"), std::string::npos) << refused.output;
+}
+
 TEST(Cli, InfoEstimatesTheStepsOfAShockRunningInFromCoarseInflowCells) {
   // The quickstart's geometry, shortened: the post-shock gas starts in the stretched cells
   // upstream, so the t = 0 step (167 steps) is far longer than the steps once it reaches the
   // 0.5 mm cells (the run takes 259).
-  const dustlift::Scene scene = dustlift::load_scene(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml",
-      {"grid.x.start=-0.02", "grid.x.end=0.02", "grid.x.cells_below=10", "grid.y.end=0.006", "grid.y.uniform_end=0.004",
-       "grid.y.cells_above=2", "particles.layer.x_max=0.02", "run.end_time=6e-5"});
+  const dustlift::Scene scene =
+      dustlift::load_scene(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml",
+                           {"grid.x.start=-0.02", "grid.x.end=0.02", "grid.x.cells_below=10",
+                            "grid.y.end=0.006", "grid.y.uniform_end=0.004", "grid.y.cells_above=2",
+                            "particles.layer.x_max=0.02", "run.end_time=6e-5"});
   dustlift::Simulation sim(scene);
-  const double estimate = dustlift::estimated_steps(sim), at_t0 = std::ceil(6e-5 / sim.gas().stable_dt());
+  const double estimate = dustlift::estimated_steps(sim),
+               at_t0 = std::ceil(6e-5 / sim.gas().stable_dt());
   sim.run("");
   const double steps = static_cast<double>(sim.step());
-  std::printf("steps: %.0f taken, %.0f estimated, %.0f at the t = 0 step\n", steps, estimate, at_t0);
+  std::printf("steps: %.0f taken, %.0f estimated, %.0f at the t = 0 step\n", steps, estimate,
+              at_t0);
   EXPECT_LT(std::abs(estimate - steps), 0.1 * steps);
   EXPECT_GT(std::abs(at_t0 - steps), 0.3 * steps) << "the old estimate, for comparison";
 }
@@ -63,13 +118,15 @@ TEST(Cli, InfoEstimatesTheStepsOfAShockRunningInFromCoarseInflowCells) {
 TEST(Cli, VersionNamesTheBuild) {
   const auto r = run_cli("--version");
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_TRUE(std::regex_search(r.output, std::regex("^dustlift [0-9]+\\.[0-9]+\\.[0-9]+ \\((git [0-9a-f]|not built)")))
+  EXPECT_TRUE(std::regex_search(
+      r.output, std::regex("^dustlift [0-9]+\\.[0-9]+\\.[0-9]+ \\((git [0-9a-f]|not built)")))
       << r.output;
 }
 
 TEST(Cli, AFreshRunRefusesAnOccupiedFolderAndOverwriteReplacesAnEarlierRun) {
   const auto dir = fresh_dir("cli_fresh_folder");
-  const std::string run = "run " + kSod + " --set grid.x.cells=50 --threads 1 --out " + (dir / "out").string();
+  const std::string run =
+      "run " + kSod + " --set grid.x.cells=50 --threads 1 --out " + (dir / "out").string();
   ASSERT_EQ(run_cli(run).exit_code, 0);
   write_file(dir / "out" / "vtk" / "gas_000099.vtr", "stale");  // e.g. from a longer earlier run
   auto r = run_cli(run);
@@ -78,7 +135,8 @@ TEST(Cli, AFreshRunRefusesAnOccupiedFolderAndOverwriteReplacesAnEarlierRun) {
   EXPECT_TRUE(fs::exists(dir / "out" / "vtk" / "gas_000099.vtr")) << "nothing touched";
   r = run_cli(run + " --overwrite");
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_FALSE(fs::exists(dir / "out" / "vtk" / "gas_000099.vtr")) << "the earlier run's files are gone";
+  EXPECT_FALSE(fs::exists(dir / "out" / "vtk" / "gas_000099.vtr"))
+      << "the earlier run's files are gone";
   // The run says what made it.
   std::ifstream log(dir / "out" / "run.log");
   std::string first, second;
@@ -98,7 +156,8 @@ TEST(Cli, AFreshRunRefusesAnOccupiedFolderAndOverwriteReplacesAnEarlierRun) {
 
 TEST(Cli, RunWritesResolvedSceneAndGasCollection) {
   const auto dir = fresh_dir("cli_run");
-  const auto r = run_cli("run " + kSod + " --out " + dir.string() + " --set grid.x.cells=100 --threads 2");
+  const auto r =
+      run_cli("run " + kSod + " --out " + dir.string() + " --set grid.x.cells=100 --threads 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "scene.resolved.toml"));
   EXPECT_TRUE(fs::exists(dir / "run.log"));
@@ -112,7 +171,8 @@ TEST(Cli, RunWritesResolvedSceneAndGasCollection) {
   const std::regex entry(R"re(timestep="([^"]+)"[^>]*file="([^"]+)")re");
   std::string last_file;
   double last_time = -1.0;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), entry); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), entry); it != std::sregex_iterator();
+       ++it) {
     last_time = std::stod((*it)[1].str());
     last_file = (*it)[2].str();
   }
@@ -193,7 +253,8 @@ TEST(Cli, NumericalFailureExitsWithCode3NamingStepCellAndVariable) {
   // the run must stop with exit code 3 and say where and what, not crash or write NaNs on.
   const auto dir = fresh_dir("blow_up");
   const auto r = run_cli("run " + kSod + " --out " + dir.string() +
-                         " --set \"initial.left={ rho = 1.0, p = 1e6 }\" --set \"initial.right={ rho = 1e-30, p = 1e-30 }\"");
+                         " --set \"initial.left={ rho = 1.0, p = 1e6 }\" --set \"initial.right={ "
+                         "rho = 1e-30, p = 1e-30 }\"");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("numerical failure: step "), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("t = "), std::string::npos) << r.output;
