@@ -7,8 +7,9 @@ Reads OUTDIR/series/*.csv (header "name_unit,...", e.g. u_m_per_s; first column 
 into OUTDIR/figures/ whatever the present series allow:
   shock_position.png           x_s(t) with a least-squares line through the t > 0 points;
                                its slope (the shock speed) is in the legend and printed
-  surface_height.png           dust-surface height h(x) at the output times (Fig. 9 style)
-  surface_height_stations.png  h(t) at the station columns
+  surface_height.png           dust-surface height h(x) at the output times (Fig. 9 style),
+                               above the initial layer top (particles.layer.y_max)
+  surface_height_stations.png  h(t) at the station columns, above the initial layer top
   forces_<band>.png            band-averaged horizontal and vertical force parts and mean
                                height against time since shock arrival (Figs. 10-11 style)
   magnus_inputs_<band>.png     relative, particle and gas rotation (Fig. 12 style)
@@ -22,6 +23,7 @@ import csv
 import glob
 import os
 import sys
+import tomllib
 
 import matplotlib
 
@@ -39,6 +41,17 @@ def read_series(path):
     header = rows[0]
     data = np.array([[float(v) for v in r] for r in rows[1:] if r], dtype=float)
     return {name: data[:, k] for k, name in enumerate(header)}
+
+
+def layer_top(outdir):
+    """The initial layer's top (particles.layer.y_max of OUTDIR/scene.resolved.toml): surface
+    heights are drawn above it. 0 when the run has no resolved scene or no layer."""
+    try:
+        with open(os.path.join(outdir, "scene.resolved.toml"), "rb") as f:
+            scene = tomllib.load(f)
+        return float(scene["particles"]["layer"]["y_max"])
+    except (OSError, KeyError, ValueError, tomllib.TOMLDecodeError):
+        return 0.0
 
 
 def shock_position(series, out):
@@ -64,13 +77,14 @@ def shock_position(series, out):
         print("shock speed (linear fit): %.9g m/s" % speed)
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("shock position x [mm]")
+    ax.set_title("Shock position against time (slope: the shock speed)")
     ax.legend()
     ax.grid(alpha=0.3)
     return save(fig, out, "shock_position.png")
 
 
-def surface_height(series, out, max_curves):
-    t, x, h = series["time_s"], series["x_m"], series["height_m"]
+def surface_height(series, out, max_curves, top):
+    t, x, h = series["time_s"], series["x_m"], series["height_m"] - top
     times = np.unique(t)
     if len(times) > max_curves:  # evenly spaced subset, always with the last time
         times = times[np.unique(np.linspace(0, len(times) - 1, max_curves).round().astype(int))]
@@ -81,7 +95,9 @@ def surface_height(series, out, max_curves):
         order = np.argsort(x[sel])
         ax.plot(x[sel][order] * 1e3, h[sel][order] * 1e3, color=c, label="t = %.3f ms" % (tk * 1e3))
     ax.set_xlabel("x [mm]")
-    ax.set_ylabel("dust surface height [mm]")
+    ax.set_ylabel("surface height above the initial top [mm]")
+    ax.set_title("Dust surface (where the particle volume fraction falls below 1e-4)")
+    ax.axhline(0.0, color="k", lw=0.5)
     ax.legend(fontsize=7, ncol=2)
     ax.grid(alpha=0.3)
     return save(fig, out, "surface_height.png")
@@ -94,13 +110,15 @@ def station_label(name):
     return "x = %s m" % ("-" + x[1:] if x.startswith("m") else x).replace("p", ".")
 
 
-def surface_stations(series, out):
+def surface_stations(series, out, top):
     names = list(series)
     fig, ax = plt.subplots(figsize=(6, 4))
     for name in names[1:]:
-        ax.plot(series[names[0]] * 1e3, series[name] * 1e3, label=station_label(name))
+        ax.plot(series[names[0]] * 1e3, (series[name] - top) * 1e3, label=station_label(name))
+    ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel("time [ms]")
-    ax.set_ylabel("dust surface height [mm]")
+    ax.set_ylabel("surface height above the initial top [mm]")
+    ax.set_title("Dust surface height at fixed stations")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return save(fig, out, "surface_height_stations.png")
@@ -124,7 +142,8 @@ def forces(series, out, band):
     axes[2].set_ylabel("mean height [mm]")
     axes[2].set_xlabel("time since shock arrival [ms]")
     axes[2].grid(alpha=0.3)
-    fig.suptitle("band %s" % band)
+    axes[2].set_title("mean height of the band's parcels")
+    axes[0].set_title("Forces on the parcels that started in band %s (per real particle)" % band)
     return save(fig, out, "forces_%s.png" % band)
 
 
@@ -140,7 +159,7 @@ def magnus_inputs(series, out, band):
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel("time since shock arrival [ms]")
     ax.set_ylabel("rotation [rad/s]")
-    ax.set_title("Magnus inputs, band %s" % band)
+    ax.set_title("Rotation rates behind the Magnus force, band %s" % band)
     ax.legend()
     ax.grid(alpha=0.3)
     return save(fig, out, "magnus_inputs_%s.png" % band)
@@ -220,9 +239,9 @@ def main(argv):
         if name == "shock_position":
             written.append(shock_position(series, out))
         elif name == "surface_height":
-            written.append(surface_height(series, out, args.max_curves))
+            written.append(surface_height(series, out, args.max_curves, layer_top(args.outdir)))
         elif name == "surface_height_stations":
-            written.append(surface_stations(series, out))
+            written.append(surface_stations(series, out, layer_top(args.outdir)))
         elif name == "dust_cloud":
             written.append(dust_cloud(series, out))
         elif name.startswith("forces_"):

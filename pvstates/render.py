@@ -60,8 +60,10 @@ def white_view(size):
     return view
 
 
-BAR_MARGIN = 120  # px kept free below the data for the colour bar
-TOP_MARGIN = 30   # px kept free above the data for the time label
+BAR_MARGIN = 170   # px kept free below the data for the x axis and the colour bar
+TOP_MARGIN = 40    # px kept free above the data for the time label
+LEFT_MARGIN = 110  # px kept free left of the data for the y axis
+RIGHT_MARGIN = 40
 
 
 def frame(view, xmin, xmax, ymin, ymax):
@@ -70,9 +72,10 @@ def frame(view, xmin, xmax, ymin, ymax):
     pv.Render(view)  # the first render resets the camera: frame after it
     w, h = view.ViewSize
     usable = max(h - BAR_MARGIN - TOP_MARGIN, 1)
-    scale = 0.5 * max((ymax - ymin) * h / float(usable), (xmax - xmin) * h / float(w) * 1.04)
+    usable_w = max(w - LEFT_MARGIN - RIGHT_MARGIN, 1)
+    scale = 0.5 * max((ymax - ymin) * h / float(usable), (xmax - xmin) * h / float(usable_w))
     world_per_px = 2.0 * scale / h
-    cx = 0.5 * (xmin + xmax)
+    cx = 0.5 * (xmin + xmax) - 0.5 * (LEFT_MARGIN - RIGHT_MARGIN) * world_per_px
     cy = ymin + scale - BAR_MARGIN * world_per_px
     view.CameraPosition = [cx, cy, 1.0]
     view.CameraFocalPoint = [cx, cy, 0.0]
@@ -85,6 +88,24 @@ def image_size(dx, dy):
     return [WIDTH, height]
 
 
+def show_axes(view):
+    """Axes along the data's edges with ticks in metres: the image's length scale."""
+    grid = view.AxesGrid
+    grid.Visibility = 1
+    grid.XTitle = "x [m]"
+    grid.YTitle = " "  # the time label names the unit: a title here would sit on the tick labels
+    grid.ShowEdges = 0
+    grid.ShowGrid = 0
+    grid.ShowTicks = 1
+    grid.AxesToLabel = 3  # the x axis along the bottom edge, the y axis along the left edge
+    for prefix in ("X", "Y"):
+        setattr(grid, prefix + "TitleColor", [0.0, 0.0, 0.0])
+        setattr(grid, prefix + "LabelColor", [0.0, 0.0, 0.0])
+        setattr(grid, prefix + "TitleFontSize", 16)
+        setattr(grid, prefix + "LabelFontSize", 13)
+    grid.GridColor = [0.0, 0.0, 0.0]
+
+
 def style_bar(lut, view, title):
     bar = pv.GetScalarBar(lut, view)
     bar.Title = title
@@ -94,13 +115,17 @@ def style_bar(lut, view, title):
     bar.Orientation = "Horizontal"
     bar.WindowLocation = "Lower Center"
     bar.ScalarBarLength = 0.5
+    # The end labels of the range sit on the nearest tick labels of a symmetric range.
+    bar.AddRangeLabels = 0
+    bar.TitleFontSize = 16
+    bar.LabelFontSize = 14
     bar.Visibility = 1
 
 
 def time_label(view, source):
     """A label that follows the view's time (a state saved with it stays live)."""
     text = pv.PythonAnnotation(registrationName="time label", Input=source)
-    text.Expression = "'t = %.4f ms' % (t_value * 1e3)"
+    text.Expression = "'t = %.4f ms    (x, y in m)' % (t_value * 1e3)"
     disp = pv.Show(text, view)
     disp.Color = [0, 0, 0]
     disp.FontSize = 14
@@ -161,6 +186,7 @@ def pressure_view(gas, parcels, t, bounds):
         pdisp.AmbientColor = [0.0, 0.0, 0.0]
         pdisp.DiffuseColor = [0.0, 0.0, 0.0]
     time_label(view, gas)
+    show_axes(view)
     frame(view, xmin, xmax, ymin, ymax)
     return view
 
@@ -195,6 +221,7 @@ def vorticity_view(gas, parcels, t, bounds, layer_height):
         pdisp.AmbientColor = [0.3, 0.3, 0.3]
         pdisp.DiffuseColor = [0.3, 0.3, 0.3]
     time_label(view, gas)
+    show_axes(view)
     frame(view, xmin, xmax, ymin, ymax)
     return view
 
@@ -208,7 +235,16 @@ def save(view, path):
 
 
 def render_state(state, outdir, figures, times_wanted):
-    pv.LoadState(state, data_directory=outdir, restrict_to_data_directory=True)
+    # Loading a state builds every representation of its displays, the image-slice one too,
+    # which reports (as a VTK error) that the rectilinear gas grid is not image data; the
+    # surface shown is right. Errors are silenced while the state loads; what it shows is
+    # checked below (its readers' times, a written image).
+    from paraview import vtk as pvvtk  # noqa: E402
+    pvvtk.vtkObject.GlobalWarningDisplayOff()
+    try:
+        pv.LoadState(state, data_directory=outdir, restrict_to_data_directory=True)
+    finally:
+        pvvtk.vtkObject.GlobalWarningDisplayOn()
     view = pv.GetActiveView() or pv.GetRenderViews()[0]
     sources = pv.GetSources()
     times = sorted({t for src in sources.values() for t in getattr(src, "TimestepValues", []) or []})
