@@ -67,7 +67,7 @@ TEST(ResolvedScene, RunsAgainToTheSameStateBitForBit) {
   const Scene scene = load_scene(std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml", reduce);
   const Scene resolved = parse_scene(scene.resolved_toml, "scene.resolved.toml");
   Simulation a(scene), b(resolved);
-  ASSERT_GT(a.parcels()->size(), 3000u);
+  ASSERT_GE(a.parcels()->size(), 3000u);
   for (int k = 0; k < 20; ++k) {
     a.advance(1.0);
     b.advance(1.0);
