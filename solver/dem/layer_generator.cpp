@@ -104,11 +104,10 @@ std::string describe_size_classes(const DemConfig& cfg) {
   }
   std::ostringstream s;
   s.precision(4);
-  s << "size classes (" << cfg.size_classes.size()
-    << "; real diameter um: parcels, mass fraction):";
+  s << "size classes (" << cfg.size_classes.size() << "):";
   for (std::size_t k = 0; k < cfg.size_classes.size(); ++k) {
-    s << (k ? "," : "") << " " << cfg.size_classes[k].diameter * 1e6 << ": " << counts[k] << ", "
-      << cfg.size_classes[k].mass_fraction;
+    s << (k ? ";" : "") << " " << cfg.size_classes[k].diameter * 1e6 << " um, " << counts[k]
+      << " parcels, mass fraction " << cfg.size_classes[k].mass_fraction;
   }
   return s.str();
 }

@@ -76,8 +76,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     }
     dem.size_classes = dist.classes;
     dem.particle_diameter = t.derived_number(
-        "diameter", mass_median_diameter(dist.classes),
-        "particles.size_distribution (its mass median diameter)", Range::positive());
+        "diameter", dist.mass_median, "particles.size_distribution (its mass median diameter)",
+        Range::positive());
   } else {
     dem.particle_diameter = t.number("diameter", dem.particle_diameter, Range::positive());
   }

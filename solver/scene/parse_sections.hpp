@@ -29,6 +29,8 @@ void parse_insitu(TableReader t, InsituConfig& insitu);
 /// setting the class sizes and the one setting their shares).
 struct SizeDistribution {
   std::vector<SizeClass> classes;
+  double mass_median =
+      0.0;  ///< m: the log-normal median, or the discrete classes' (mass_median_diameter)
   const char* size_key = "diameters";
   const char* count_key = "mass_fractions";
 };

@@ -76,6 +76,7 @@ SizeDistribution parse_size_distribution(TableReader& sd) {
                                             kFractionSumTolerance));
     }
     for (std::size_t k = 0; k < d.size(); ++k) out.classes.push_back({d[k], f[k]});
+    out.mass_median = mass_median_diameter(out.classes);
   } else {
     out.size_key = "median";
     out.count_key = "classes";
@@ -88,6 +89,7 @@ SizeDistribution parse_size_distribution(TableReader& sd) {
     }
     const int n = static_cast<int>(sd.integer("classes", 5, 1, kMaxClasses));
     out.classes = lognormal_classes(median, sigma, n);
+    out.mass_median = median;
     // The resolved scene shows the classes the cut made (comments: they derive again).
     sd.note_derived("diameters", list_text(out.classes, true),
                     "median, geometric_std and classes: the mass quantiles at (k + 1/2) / classes");

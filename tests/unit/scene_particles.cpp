@@ -192,7 +192,7 @@ TEST(SceneSizeDistribution, DiscreteClassesResolve) {
   EXPECT_EQ(d.real_per_parcel, 0.0);       // per class
   EXPECT_TRUE(has(s.resolved_toml, "diameters = [ 5.0000000000000002e-05, 0.0001 ]"))
       << s.resolved_toml;
-  EXPECT_TRUE(has(describe_layer(d), "size classes (2;")) << describe_layer(d);
+  EXPECT_TRUE(has(describe_layer(d), "size classes (2): 50 um, ")) << describe_layer(d);
 }
 
 TEST(SceneSizeDistribution, LognormalClassesResolveAndShowInTheResolvedScene) {
@@ -202,7 +202,7 @@ TEST(SceneSizeDistribution, LognormalClassesResolveAndShowInTheResolvedScene) {
   const DemConfig& d = s.particles;
   ASSERT_EQ(d.size_classes.size(), 5u);  // the default count
   EXPECT_NEAR(d.size_classes[4].diameter, 121.5501408844856e-6, 1e-18);
-  EXPECT_EQ(d.particle_diameter, d.size_classes[2].diameter);
+  EXPECT_EQ(d.particle_diameter, 50e-6);  // the mass median given, whatever the class count
   EXPECT_TRUE(has(s.resolved_toml, "particles.size_distribution.diameters = [2.0567643787232"))
       << s.resolved_toml;
   EXPECT_TRUE(has(s.resolved_toml, "particles.size_distribution.mass_fractions = [0.2"))
@@ -347,6 +347,9 @@ TEST(SceneSizeDistribution, LayerFileParticleDiametersAreItsClasses) {
   EXPECT_EQ(ps.size_class[0], 0.0);
   EXPECT_EQ(ps.size_class[2], 1.0);
   EXPECT_EQ(ps.real_diameter[0], 50e-6);
-  EXPECT_TRUE(has(describe_layer(d), "size classes (2;")) << describe_layer(d);
+  EXPECT_TRUE(has(describe_layer(d),
+                  "size classes (2): 50 um, 2 parcels, mass fraction 0.75; 100 um, 1 "
+                  "parcels, mass fraction 0.25"))
+      << describe_layer(d);
   std::filesystem::remove_all(dir);
 }
