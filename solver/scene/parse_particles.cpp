@@ -1,8 +1,6 @@
 // [particles]: the DEM parcel system (owned by the DEM module). Defaults are the paper's
 // (Table 2, physics-reference.md §3.7, §4); choices where the paper is silent or garbled
 // are explained in docs/dem.md.
-#include <fmt/format.h>
-
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -13,6 +11,8 @@
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
+
+#include <fmt/format.h>
 
 namespace dustlift::scene_detail {
 namespace {
