@@ -35,11 +35,19 @@ void GasParticleCoupling::deposit_alpha(const ParcelSystem& parcels) {
   stencils_.plan(grid_, reaching);
   // Each cell sums its parcels in parcel order whatever the thread count (ParallelDeposit).
   const double* n_real = parcels.n_real.data();
+  // Each parcel's own solid volume: its class's V_p (computed once, as particle_volume_ is, so
+  // a one-class layer deposits the same bits).
+  const double* size_class = parcels.size_class.data();
+  const double* class_volume = class_volume_.empty() ? nullptr : class_volume_.data();
+  const double one_volume = particle_volume_;
   stencils_.run([&](std::size_t k, int m) {
     const DepositStencil& d = stencils_[k];
     const int i = d.i[static_cast<std::size_t>(m)], j = d.j[static_cast<std::size_t>(m)];
     if (i > c) return;
-    const double volume = n_real[k] * particle_volume_;  // eq. (12), per metre of depth
+    const double v_p = class_volume == nullptr
+                           ? one_volume
+                           : class_volume[static_cast<std::size_t>(size_class[k])];
+    const double volume = n_real[k] * v_p;  // eq. (12), per metre of depth
     alpha_p_(i, j) += d.fraction[static_cast<std::size_t>(m)] * volume / grid_.area(i, j);
   });
   Field2D* const deposited[] = {&alpha_p_};

@@ -20,6 +20,8 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
       models_(config),
       props_(std::make_unique<GasProperties>(gas)),
       stencils_(config.influence_width) {
+  for (const SizeClass& c : dem.size_classes)
+    class_volume_.push_back(std::numbers::pi / 6.0 * std::pow(c.diameter, 3));
   make_fields();
 }
 

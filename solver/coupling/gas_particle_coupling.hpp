@@ -178,6 +178,8 @@ class GasParticleCoupling {
   CouplingConfig cfg_;
   DemConfig dem_cfg_;
   double particle_volume_ = 0.0;  ///< V_p of one real particle
+  /// V_p of each size class, same expression (a polydisperse layer; empty: one class).
+  std::vector<double> class_volume_;
   CouplingModels models_;
   std::unique_ptr<GasProperties> props_;
   Columns col_;

@@ -117,7 +117,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   double* am_gx = added_mass ? ps.column(col_.added_mass_gas_x).data() : nullptr;
   double* am_gy = added_mass ? ps.column(col_.added_mass_gas_y).data() : nullptr;
   double* inv_mt = added_mass ? ps.column(col_.inv_total_mass).data() : nullptr;
-  const double d = dem_cfg_.particle_diameter;
+  const double* real_d = ps.real_diameter.data();  // each parcel's own real particles
   // Batches of parcels: each is sampled, then every model runs over the whole batch (one
   // virtual call per model and batch). Dynamic scheduling: parcels in disturbed gas cost
   // several times those in uniform gas (whose stencils are uniform and whose drag needs no
@@ -155,6 +155,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     }
     for (std::size_t q = 0; q < count; ++q) {
       const std::size_t k = k0 + q;
+      const double d = real_d[k];
       GasSample& s = in[q].gas;
       s.rho = value[kRho][q];
       s.u = value[kU][q];

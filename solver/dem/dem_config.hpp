@@ -46,6 +46,9 @@ struct PlacedParcel {
   double vx = 0.0, vy = 0.0;    ///< m/s
   double omega = 0.0;           ///< rad/s, counter-clockwise positive
   double temperature = 300.0;   ///< K
+  /// m, the real particles' diameter (optional column `particle_diameter`; 0: not given,
+  /// particles.diameter). The file's distinct values are its size classes.
+  double particle_diameter = 0.0;
 };
 
 /// Linear spring–dashpot contact law (Table 1), per REAL particle (§3.7).

@@ -58,6 +58,25 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
 }
 
 void ParcelSystem::compute_contacts(double dt) {
+  if (!counts_known_) {
+    // Whether any two parcels hold different real counts (size classes, or layer-file parcels
+    // of different diameters): only then the pair rule below is needed, and a layer of one
+    // count runs the plain per-real-particle pass. The same pass on every rank (the parcel
+    // list changes at rebuilds, which all ranks make together).
+    bool mixed = false;
+    for (std::size_t i = 1; i < n_real.size() && !mixed; ++i) mixed = n_real[i] != n_real[0];
+    mixed_counts_ = ranks_ != nullptr ? ranks_->any(mixed) : mixed;
+    counts_known_ = true;
+  }
+  if (mixed_counts_) {
+    contacts_pass<true>(dt);
+  } else {
+    contacts_pass<false>(dt);
+  }
+}
+
+template <bool Mixed>
+void ParcelSystem::contacts_pass(double dt) {
   const std::size_t n = stepped_count();
   const ContactParams pc = cfg_.contact;
   const ContactParams wc = cfg_.wall_contact;
@@ -81,6 +100,7 @@ void ParcelSystem::compute_contacts(double dt) {
   const double* __restrict pvy = vy.data();
   const double* __restrict pw = omega.data();
   const double* __restrict pr = radius.data();
+  const double* __restrict pn = n_real.data();
   const std::int32_t* __restrict off = nbr_offset.data();
   const std::int32_t* __restrict nj = nbr_index.data();
   const std::int8_t* __restrict nim = nbr_image.data();
@@ -132,9 +152,20 @@ void ParcelSystem::compute_contacts(double dt) {
       const double uy = (pvy[j] - vyi) - wsum * nx;
       const ContactResult c = contact_force(pc, nx, ny, rs - dist, ux, uy, ndelta[k], ri, dt);
       ndelta[k] = c.delta_t;
-      fx += c.fx;
-      fy += c.fy;
-      tq += c.torque;
+      if (!Mixed || pn[j] == pn[i]) {
+        fx += c.fx;
+        fy += c.fy;
+        tq += c.torque;
+      } else {
+        // Parcels of different real counts (size classes, or file parcels of different
+        // diameters): the pair stands for min(n_i, n_j) real contacts, so each side's
+        // per-real-particle force is scaled by min(n_i, n_j) / n_i and the parcels' totals
+        // n_i F_i = -n_j F_j are equal and opposite (docs/dem.md, "Polydisperse layers").
+        const double share = std::min(pn[i], pn[j]) / pn[i];
+        fx += c.fx * share;
+        fy += c.fy * share;
+        tq += c.torque * share;
+      }
     }
     const unsigned mask = wmask[i];
     for (int w = 0; w < n_walls && mask != 0; ++w) {

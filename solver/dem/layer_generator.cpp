@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "solver/dem/coarse_graining.hpp"
+#include "solver/dem/size_distribution.hpp"
 
 namespace dustlift {
 namespace {
@@ -32,7 +33,25 @@ void add_generated_layer(const DemConfig& cfg, ParcelSystem& system) {
                             : derived_real_per_parcel(cfg.layer.volume_fraction, area, n_parcels,
                                                       cfg.particle_diameter);
   system.reserve(pos.x.size());
-  for (std::size_t i = 0; i < pos.x.size(); ++i) system.add_parcel(parcel_of(cfg, pos.x[i], pos.y[i], n_real));
+  if (cfg.size_classes.empty()) {
+    for (std::size_t i = 0; i < pos.x.size(); ++i)
+      system.add_parcel(parcel_of(cfg, pos.x[i], pos.y[i], n_real));
+    return;
+  }
+  // Polydisperse: every parcel holds the same solid volume alpha_p A / N, so a class's share
+  // of the parcels is its share of the mass, and a parcel of class k holds
+  // alpha_p A / (N V_p(d_k)) real particles (docs/dem.md, "Polydisperse layers").
+  const std::vector<int> classes = layer_size_classes(cfg, pos.x.size());
+  for (std::size_t i = 0; i < pos.x.size(); ++i) {
+    const auto k = static_cast<std::size_t>(classes[i]);
+    const double d = cfg.size_classes[k].diameter;
+    ParcelInit p =
+        parcel_of(cfg, pos.x[i], pos.y[i],
+                  derived_real_per_parcel(cfg.layer.volume_fraction, area, n_parcels, d));
+    p.real_diameter = d;
+    p.size_class = classes[i];
+    system.add_parcel(p);
+  }
 }
 
 /// The file's parcels; one of diameter D_i holds (D_i / D)^2 times real_per_parcel (eq. 11).
@@ -44,6 +63,13 @@ void add_file_layer(const DemConfig& cfg, ParcelSystem& system) {
   for (const PlacedParcel& f : cfg.layer_parcels) {
     const double scale = f.diameter / cfg.parcel_diameter;
     ParcelInit p = parcel_of(cfg, f.x, f.y, n_ref * scale * scale);
+    if (!cfg.size_classes.empty()) {
+      // Its own particles: the solid volume it would hold of particles.diameter.
+      const double d = f.particle_diameter > 0.0 ? f.particle_diameter : cfg.particle_diameter;
+      p.real_diameter = d;
+      p.size_class = size_class_of(cfg.size_classes, d);
+      p.n_real = same_volume_real_per_parcel(p.n_real, cfg.particle_diameter, d);
+    }
     p.diameter = f.diameter;
     p.vx = f.vx;
     p.vy = f.vy;
@@ -54,6 +80,37 @@ void add_file_layer(const DemConfig& cfg, ParcelSystem& system) {
 }
 
 }  // namespace
+
+std::vector<int> layer_size_classes(const DemConfig& cfg, std::size_t placed) {
+  std::vector<double> fractions;
+  for (const SizeClass& c : cfg.size_classes) fractions.push_back(c.mass_fraction);
+  return shuffled_classes(largest_remainder_counts(static_cast<std::int64_t>(placed), fractions),
+                          cfg.layer.seed);
+}
+
+std::string describe_size_classes(const DemConfig& cfg) {
+  if (cfg.size_classes.empty()) return {};
+  std::vector<std::int64_t> counts(cfg.size_classes.size(), 0);
+  if (cfg.layer.arrangement == LayerArrangement::File) {
+    for (const PlacedParcel& p : cfg.layer_parcels) {
+      const int k =
+          size_class_of(cfg.size_classes,
+                        p.particle_diameter > 0.0 ? p.particle_diameter : cfg.particle_diameter);
+      if (k >= 0) ++counts[static_cast<std::size_t>(k)];
+    }
+  } else {
+    const std::size_t placed = generate_layer(cfg.layer, cfg.parcel_diameter).x.size();
+    for (int k : layer_size_classes(cfg, placed)) ++counts[static_cast<std::size_t>(k)];
+  }
+  std::ostringstream s;
+  s.precision(4);
+  s << "size classes (" << cfg.size_classes.size() << "):";
+  for (std::size_t k = 0; k < cfg.size_classes.size(); ++k) {
+    s << (k ? ";" : "") << " " << cfg.size_classes[k].diameter * 1e6 << " um, " << counts[k]
+      << " parcels, mass fraction " << cfg.size_classes[k].mass_fraction;
+  }
+  return s.str();
+}
 
 std::string describe_layer(const DemConfig& cfg) {
   const LayerConfig& L = cfg.layer;
@@ -76,6 +133,7 @@ std::string describe_layer(const DemConfig& cfg) {
     }
   }
   if (layer_settles(L)) s << "; settled under gravity before t = 0";
+  if (!cfg.size_classes.empty()) s << "; " << describe_size_classes(cfg);
   return s.str();
 }
 

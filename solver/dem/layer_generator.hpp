@@ -56,8 +56,17 @@ struct LayerPositions {
 };
 LayerPositions generate_layer(const LayerConfig& layer, double parcel_d);
 
+/// The size class of each of the `placed` parcels of a generated polydisperse layer, in
+/// placement order: largest-remainder counts of the classes' mass fractions, shuffled by the
+/// layer's seed (solver/dem/size_distribution.hpp).
+std::vector<int> layer_size_classes(const DemConfig& cfg, std::size_t placed);
+
+/// "size classes (...)": each class's real diameter, parcel count and mass fraction ("" for
+/// a monodisperse layer).
+std::string describe_size_classes(const DemConfig& cfg);
+
 /// One line for `dustlift info` and the run log: arrangement, rows x columns, pitches,
-/// parcel count and areal fraction (or the file's parcel count).
+/// parcel count and areal fraction (or the file's parcel count), and the size classes.
 std::string describe_layer(const DemConfig& cfg);
 
 /// One line about the bed a system holds: its highest parcel top (m) and the areal

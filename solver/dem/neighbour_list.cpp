@@ -120,6 +120,7 @@ ParcelSystem::SkinLimits ParcelSystem::skin_limits() const {
 }
 
 void ParcelSystem::rebuild_neighbours() {
+  counts_known_ = false;  // parcels may have moved between ranks
   update_cell_geometry();
   // A decomposed run first moves parcels to their owners and renews the rank copies; the history
   // travels with the parcels (redistribute leaves it in old_*).

@@ -120,12 +120,14 @@ void ParcelSystem::assign_packed(const std::vector<std::vector<double>>& pieces)
   }
   order_key.clear();
   rank_copy.clear();
+  counts_known_ = false;
 }
 
 void ParcelSystem::drop_decomposition() {
   ranks_ = nullptr;
   order_key.clear();
   rank_copy.clear();
+  counts_known_ = false;
 }
 
 void ParcelSystem::refresh_rank_copies(std::span<const ParcelColumn> columns) {

@@ -83,6 +83,7 @@ void ParcelSystem::add_parcel(const ParcelInit& p) {
   nbr_image.clear();
   nbr_delta.clear();
   needs_rebuild_ = true;
+  counts_known_ = false;
 }
 
 ParcelInternals ParcelSystem::internals() const {
@@ -136,6 +137,7 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
   for (std::size_t i = 0; i < half_skin.size(); ++i)
     inv_skin2[i] = 1.0 / (half_skin[i] * half_skin[i]);
   needs_rebuild_ = s.needs_rebuild;
+  counts_known_ = false;
   time_ = s.time;
   steps_ = s.steps;
   rebuilds_ = s.rebuilds;
@@ -195,8 +197,9 @@ double ParcelSystem::mechanical_energy() const {
         const double dx = x[j] + nbr_image[k] * length_x_ - x[i], dy = y[j] - y[i];
         const double overlap = radius[i] + radius[j] - std::sqrt(dx * dx + dy * dy);
         if (overlap > 0.0) {
-          // Half of the pair's spring energy on each side.
-          e += 0.5 * n_real[i] *
+          // Half of the pair's spring energy on each side; the pair stands for
+          // min(n_i, n_j) real contacts (compute_contacts).
+          e += 0.5 * std::min(n_real[i], n_real[j]) *
                (0.5 * pc.k_n * overlap * overlap + 0.5 * pc.k_t * nbr_delta[k] * nbr_delta[k]);
         }
       }

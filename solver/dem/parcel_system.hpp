@@ -8,6 +8,8 @@
 // its mass and inertia are the sums over them. Every force part stored here is per REAL
 // particle (the parcel's total is n_real times it): eq. (5) divided by n_i, which is how
 // the paper integrates parcels (acceleration = real-particle force / real-particle mass).
+// Where parcels of different real counts touch, a pair stands for min(n_i, n_j) real
+// contacts, so that their total forces stay equal and opposite (docs/dem.md).
 //
 // Determinism: every parcel gathers its own contacts in neighbour-list order (each pair is
 // evaluated from both sides, bitwise symmetrically); no atomics, no reductions other than
@@ -214,6 +216,11 @@ class ParcelSystem : public ParcelTable {
   void sort_by_cell(bool permute_data);
   friend class ParcelSlabs;  // moves the rows and the carried history at rebuilds
   void compute_contacts(double dt);
+  /// The contact pass; Mixed: parcels of different real counts meet (the pair rule).
+  template <bool Mixed>
+  void contacts_pass(double dt);
+  bool mixed_counts_ = false;  ///< some parcels' real counts differ (valid when counts_known_)
+  bool counts_known_ = false;  ///< cleared when parcels are added, restored or moved
   void integrate(double dt, bool store_parts);
   void integrate_forced(double dt, bool store_parts);
   double wall_position(int w) const;

@@ -55,6 +55,7 @@ void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
   if (ps.ranks_ != nullptr)
     throw std::logic_error("ParcelSlabs::split: the parcels are split already");
   ps.ranks_ = this;
+  ps.counts_known_ = false;  // every rank decides the contact pass again, together
   set_cuts(std::move(cuts));
   const std::size_t n = ps.size();
   ps.order_key.resize(n);

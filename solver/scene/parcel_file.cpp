@@ -1,5 +1,6 @@
 #include "solver/scene/parcel_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -12,9 +13,9 @@ namespace dustlift {
 namespace {
 
 /// The columns a layer file may have, in the order PlacedParcel lists them.
-enum Column { X, Y, Diameter, Vx, Vy, Omega, Temperature, kColumns };
-constexpr std::array<std::string_view, kColumns> kColumnNames{"x", "y", "diameter", "vx", "vy", "omega",
-                                                              "temperature"};
+enum Column { X, Y, Diameter, Vx, Vy, Omega, Temperature, ParticleDiameter, kColumns };
+constexpr std::array<std::string_view, kColumns> kColumnNames{
+    "x", "y", "diameter", "vx", "vy", "omega", "temperature", "particle_diameter"};
 
 double& field_of(PlacedParcel& p, int column) {
   switch (column) {
@@ -24,6 +25,8 @@ double& field_of(PlacedParcel& p, int column) {
     case Vx: return p.vx;
     case Vy: return p.vy;
     case Omega: return p.omega;
+    case ParticleDiameter:
+      return p.particle_diameter;
     default: return p.temperature;
   }
 }
@@ -130,13 +133,18 @@ std::vector<PlacedParcel> parse_parcel_file(const std::string& text, const std::
                                     std::to_string(header_line) + "), found " + std::to_string(fields.size()));
     }
     PlacedParcel p = defaults;
+    // With a particle_diameter column each parcel holds whole particles of its own diameter.
+    const bool own_particles =
+        std::find(layout.begin(), layout.end(), ParticleDiameter) != layout.end();
     for (std::size_t k = 0; k < fields.size(); ++k) {
       const int c = layout[k];
       const Field& f = fields[k];
       const std::string what = "column '" + std::string(kColumnNames[c]) + "': ";
       const auto v = parse_number(f.text);
       if (!v) error.at(line_no, f.column, what + "'" + std::string(f.text) + "' is not a finite number");
-      if ((c == Diameter || c == Temperature) && !(*v > 0.0)) error.at(line_no, f.column, what + "must be > 0");
+      if ((c == Diameter || c == Temperature || c == ParticleDiameter) && !(*v > 0.0)) {
+        error.at(line_no, f.column, what + "must be > 0");
+      }
       if (c == X && !(*v >= limits.x_min && *v <= limits.x_max)) {
         error.at(line_no, f.column, what + "parcel centre outside the grid (x from " + number_text(limits.x_min) +
                                         " to " + number_text(limits.x_max) + " m)");
@@ -145,15 +153,24 @@ std::vector<PlacedParcel> parse_parcel_file(const std::string& text, const std::
         error.at(line_no, f.column, what + "parcel centre outside the grid (y from " + number_text(limits.y_min) +
                                         " to " + number_text(limits.y_max) + " m)");
       }
-      if (c == Diameter && *v < limits.min_diameter) {
+      if (c == Diameter && !own_particles && *v < limits.min_diameter) {
         error.at(line_no, f.column, what + "smaller than particles.diameter (" + number_text(limits.min_diameter) +
                                         " m): a parcel holds whole particles (eq. 11)");
       }
-      if (c == Diameter && *v > limits.max_diameter) {
+      if ((c == Diameter || c == ParticleDiameter) && *v > limits.max_diameter) {
         error.at(line_no, f.column, what + "larger than the smallest grid cell (" + number_text(limits.max_diameter) +
                                         " m), which breaks the unresolved-particle model (eqs. 12-16)");
       }
       field_of(p, c) = *v;
+    }
+    if (own_particles) {
+      std::size_t k = 0;
+      while (layout[k] != ParticleDiameter) ++k;
+      if (p.particle_diameter > p.diameter) {
+        error.at(line_no, fields[k].column,
+                 "column 'particle_diameter': larger than the parcel's diameter (" +
+                     number_text(p.diameter) + " m): a parcel holds whole particles (eq. 11)");
+      }
     }
     parcels.push_back(p);
   }

@@ -3,6 +3,7 @@
 // LIGGGHTS/LAMMPS or a few hand-placed parcels can start a run. Format (docs/dem.md):
 //   # comment lines and blank lines anywhere
 //   x,y,diameter,vx,vy,omega,temperature      <- header: x and y required, the rest optional
+//                                                (and particle_diameter: a polydisperse layer)
 //   0.0010,0.0010,100e-6,1.0,0,0,300          <- one parcel per line, SI units
 // Errors throw SceneError "file:line:column: what is wrong" (columns count characters from 1).
 #include <array>

@@ -7,6 +7,7 @@
 
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/layer_generator.hpp"
+#include "solver/dem/size_distribution.hpp"
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
@@ -52,8 +53,9 @@ LayerArrangement parse_arrangement(TableReader& lt) {
 }  // namespace
 
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary) {
-  t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature", "parcel_diameter", "layer",
-                 "real_per_parcel", "contact", "wall_contact", "courant", "skin", "fast_skin_substeps", "gravity", "g"});
+  t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature",
+                 "parcel_diameter", "layer", "real_per_parcel", "contact", "wall_contact",
+                 "courant", "skin", "fast_skin_substeps", "gravity", "g", "size_distribution"});
   dem.enabled = t.boolean("enabled", t.present());
   if (!dem.enabled) {
     // Switched off on purpose: the rest of the section (and the dust's coupling and output
@@ -62,13 +64,37 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     if (!dem.switched_off) t.finish();
     return;
   }
-  dem.particle_diameter = t.number("diameter", dem.particle_diameter, Range::positive());
+  // A polydisperse layer: its classes give the particle sizes, and particles.diameter is
+  // their mass median (derived, so that it can never disagree with them).
+  TableReader sd = t.table("size_distribution");
+  SizeDistribution dist;
+  if (sd.present()) dist = parse_size_distribution(sd);
+  const bool poly = !dist.classes.empty();
+  if (poly) {
+    if (t.has("diameter")) {
+      t.fail(
+          "diameter",
+          "derived from [particles.size_distribution] (its mass median diameter): remove it, the "
+          "size classes give the particle sizes");
+    }
+    dem.size_classes = dist.classes;
+    dem.particle_diameter = t.derived_number(
+        "diameter", dist.mass_median, "particles.size_distribution (its mass median diameter)",
+        Range::positive());
+  } else {
+    dem.particle_diameter = t.number("diameter", dem.particle_diameter, Range::positive());
+  }
   dem.density = t.number("density", dem.density, Range::positive());
   dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
   const bool parcel_diameter_given = t.has("parcel_diameter");
-  dem.parcel_diameter = t.derived_number("parcel_diameter", dem.particle_diameter, "particles.diameter (no coarse graining)",
-                                         Range::positive());
+  dem.parcel_diameter =
+      poly ? t.derived_number(
+                 "parcel_diameter", dist.classes.back().diameter,
+                 "particles.size_distribution (its largest class: no coarse graining of it)",
+                 Range::positive())
+           : t.derived_number("parcel_diameter", dem.particle_diameter,
+                              "particles.diameter (no coarse graining)", Range::positive());
   if (dem.parcel_diameter < dem.particle_diameter) {
     t.fail("parcel_diameter", "must be at least the particle diameter (n_xy >= 1, eq. 11)");
   }
@@ -95,7 +121,13 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   // plane's fraction instead, (pi D^2/4) / V_p (15,000 /m for 100 um).
   const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
   double derived = 0.0;
+  double planned = 0.0;  // a generated layer's planned parcel count
   if (L.arrangement == LayerArrangement::File) {
+    if (poly) {
+      t.fail("size_distribution",
+             "not used with arrangement = \"file\": give the layer file a particle_diameter "
+             "column instead (its distinct values are the size classes)");
+    }
     if (lt.has("seed")) lt.fail("seed", "not used with arrangement = \"file\"");
     for (const char* key : {"loose_top_rows", "loose_top_fill"}) {
       if (lt.has(key))
@@ -110,10 +142,13 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     double equivalent = 0.0;
     for (const PlacedParcel& p : dem.layer_parcels) equivalent += std::pow(p.diameter / dem.parcel_diameter, 2);
     if (fraction) L.volume_fraction = *fraction;
+    dem.size_classes =
+        file_size_classes(dem.layer_parcels, dem.particle_diameter, dem.parcel_diameter);
     derived = fraction ? derived_real_per_parcel(*fraction, area, equivalent, dem.particle_diameter)
                        : equal_fraction_real_per_parcel(dem.parcel_diameter, dem.particle_diameter);
   } else {
     if (lt.has("file")) lt.fail("file", "only used with arrangement = \"file\"");
+    if (poly) check_class_sizes(dist, sd, dem, grid);  // before the plan, which needs them to fit
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
     L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
@@ -138,13 +173,40 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
       lt.fail("loose_top_fill", "needs loose_top_rows > 0 (the rows it thins)");
     }
     // From the plan's count: the rows below a loose top hold volume_fraction.
-    derived = derived_real_per_parcel(L.volume_fraction, area, static_cast<double>(plan.n_parcels),
-                                      dem.particle_diameter);
+    planned = static_cast<double>(plan.n_parcels);
+    derived = derived_real_per_parcel(L.volume_fraction, area, planned, dem.particle_diameter);
+    if (poly) {
+      const std::int64_t placed =
+          L.loose_top_rows > 0
+              ? static_cast<std::int64_t>(generate_layer(L, dem.parcel_diameter).x.size())
+              : plan.n_parcels;
+      check_class_counts(dist, sd, placed);
+    }
   }
   lt.finish();
-  dem.real_per_parcel = t.derived_number("real_per_parcel", derived,
-                                         "the layer's volume_fraction and the particle and parcel diameters (§4)",
-                                         Range::positive());
+  if (poly) {
+    // Per class: every parcel holds the same solid volume (docs/dem.md, "Polydisperse layers").
+    if (t.has("real_per_parcel")) {
+      t.fail("real_per_parcel",
+             "not used with [particles.size_distribution]: each size class has its own "
+             "count, derived so that every parcel holds the same solid volume");
+    }
+    std::string per_class = "[";
+    for (std::size_t k = 0; k < dist.classes.size(); ++k) {
+      per_class += fmt::format(
+          "{}{:.17g}", k ? ", " : "",
+          derived_real_per_parcel(L.volume_fraction, area, planned, dist.classes[k].diameter));
+    }
+    t.note_derived(
+        "real_per_parcel", per_class + "]",
+        "one per size class: the layer's volume_fraction shared equally by its parcels (§4)");
+    dem.real_per_parcel = 0.0;  // derived per class by the layer generator
+  } else {
+    dem.real_per_parcel =
+        t.derived_number("real_per_parcel", derived,
+                         "the layer's volume_fraction and the particle and parcel diameters (§4)",
+                         Range::positive());
+  }
 
   dem.contact = parse_contact(t.table("contact"), dem.contact);
   dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, "particles.contact");

@@ -1,5 +1,8 @@
 #pragma once
 // Internal: one parse function per scene section, each in its own file.
+#include <cstdint>
+#include <vector>
+
 #include "solver/scene/scene.hpp"
 #include "solver/scene/table_reader.hpp"
 
@@ -21,6 +24,25 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem, const GridConfig& grid);
 void parse_insitu(TableReader t, InsituConfig& insitu);
+
+/// [particles.size_distribution] read: its classes, and the keys its errors name (the one
+/// setting the class sizes and the one setting their shares).
+struct SizeDistribution {
+  std::vector<SizeClass> classes;
+  double mass_median =
+      0.0;  ///< m: the log-normal median, or the discrete classes' (mass_median_diameter)
+  const char* size_key = "diameters";
+  const char* count_key = "mass_fractions";
+};
+/// Reads the table (either form; refuses fractions not summing to 1, sigma_g <= 1, diameters
+/// not ascending or not positive, lists of different lengths) and notes a log-normal cut's
+/// classes in the resolved scene.
+SizeDistribution parse_size_distribution(TableReader& sd);
+/// Refuses a class larger than the smallest cell, the layer's depth or the parcel diameter.
+void check_class_sizes(const SizeDistribution& dist, const TableReader& sd, const DemConfig& dem,
+                       const GridConfig& grid);
+/// Refuses a class that gets no parcel of the `placed` parcels (largest-remainder counts).
+void check_class_counts(const SizeDistribution& dist, const TableReader& sd, std::int64_t placed);
 
 /// The smallest cell width of the grid along either axis, m.
 double min_cell_width(const GridConfig& grid);

@@ -73,9 +73,16 @@ std::vector<std::string> Simulation::enabled_effects() const {
   const auto& c = scene_.coupling;
   std::ostringstream s;
   s << "particles: " << (parcels_ ? parcels_->size() : 0) << " DEM parcels of "
-    << d.parcel_diameter * 1e6 << " um holding " << d.real_per_parcel << " real particles of "
-    << d.particle_diameter * 1e6 << " um per metre; spring-dashpot contacts (k_n " << d.contact.k_n
-    << " N/m, k_t " << d.contact.k_t << " N/m, h " << d.contact.damping << " N s/m)";
+    << d.parcel_diameter * 1e6 << " um holding ";
+  if (d.size_classes.empty()) {
+    s << d.real_per_parcel << " real particles of " << d.particle_diameter * 1e6 << " um per metre";
+  } else {
+    s << "real particles of " << d.size_classes.size() << " size classes from "
+      << d.size_classes.front().diameter * 1e6 << " to " << d.size_classes.back().diameter * 1e6
+      << " um (mass median " << d.particle_diameter * 1e6 << " um), the same solid volume each";
+  }
+  s << "; spring-dashpot contacts (k_n " << d.contact.k_n << " N/m, k_t " << d.contact.k_t
+    << " N/m, h " << d.contact.damping << " N s/m)";
   e.push_back(s.str());
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"
                         : "coupling: one-way (gas does not feel the particles)");

@@ -148,6 +148,15 @@ TEST(CheckpointRestart, CoupledBoxContinuesBitwise) {
   check_restart_is_bitwise(kBox, 120, 300, true);
 }
 
+TEST(CheckpointRestart, PolydisperseBoxContinuesBitwise) {
+  // Three log-normal classes: their real diameters, classes and counts come back from the
+  // checkpoint, and the contacts between classes continue bit for bit.
+  check_restart_is_bitwise(
+      std::string(kBox) +
+          "[particles.size_distribution]\nmedian = 60e-6\ngeometric_std = 1.5\nclasses = 3\n",
+      120, 300, true);
+}
+
 TEST(CheckpointRestart, GasOnlyShockContinuesBitwise) {
   check_restart_is_bitwise(kShock, 40, 100, false);
 }

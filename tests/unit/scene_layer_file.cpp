@@ -92,7 +92,8 @@ TEST(LayerFile, ErrorsNameLineAndColumn) {
   EXPECT_EQ(error_of("x,y\n0.001,abc\n"), "layer.csv:2:7: column 'y': 'abc' is not a finite number");
   EXPECT_EQ(error_of("x, y\n0.001, nan\n"), "layer.csv:2:8: column 'y': 'nan' is not a finite number");
   EXPECT_EQ(error_of("x,y,mass\n"),
-            "layer.csv:1:5: unknown column 'mass' (known: x, y, diameter, vx, vy, omega, temperature)");
+            "layer.csv:1:5: unknown column 'mass' (known: x, y, diameter, vx, vy, omega, "
+            "temperature, particle_diameter)");
   EXPECT_EQ(error_of("x,y,x\n"), "layer.csv:1:5: column 'x' appears twice");
   EXPECT_EQ(error_of("# c\nx,diameter\n"), "layer.csv:2:1: missing column 'y' (x and y are required)");
   EXPECT_EQ(error_of("x,y\n0.001,0.001,5\n"), "layer.csv:2:13: expected 2 fields as in the header (line 1), found 3");
