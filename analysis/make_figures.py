@@ -172,7 +172,7 @@ def dust_cloud(series, out):
     ax.plot(t, series["lifted_mass_kg_per_m"] * 1e3, "k-", label="all sizes")
     classes = sorted({n.split("_")[0] for n in series if n.startswith("class")})
     for c in classes:
-        ax.plot(t, series[c + "_lifted_mass_kg_per_m"] * 1e3, "--", label="size " + c[len("class"):])
+        ax.plot(t, series[c + "_lifted_mass_kg_per_m"] * 1e3, "--", label="size class " + c[len("class"):])
     ax.set_ylabel("lifted mass [g per m of span]")
     share = ax.twinx()
     share.plot(t, series["lifted_share_1"] * 100.0, color="tab:red", lw=0.8)

@@ -6,7 +6,7 @@ Usage: /usr/bin/python3 analysis/plot_cloud_study.py SWEEPDIR [--out FILE] [--ta
 Reads SWEEPDIR/summary.csv (the runs and their varied keys) and each run's
 series/dust_cloud.csv, and draws against time, one curve per run: the lifted share of the
 layer, the heights under which 90 % of the lifted mass lies, the explosible area and the
-distance of the densest lifted column behind the shock. Writes SWEEPDIR/dust_cloud.png
+distances of the first and the densest lifted column behind the shock. Writes SWEEPDIR/dust_cloud.png
 (or --out) and prints a Markdown table of each run's cloud at its last output (also written
 to --table when given). Exits 1 when no run has a dust-cloud series.
 """
@@ -59,17 +59,21 @@ def main(argv):
         return 1
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True)
-    for row, s in runs:
+    for k, (row, s) in enumerate(runs):
         t = s["time_s"] * 1e3
         label = label_of(row, keys)
-        axes[0, 0].plot(t, s["lifted_share_1"] * 100.0, ".-", label=label)
-        axes[0, 1].plot(t, s["height_p90_m"] * 1e3, ".-", label=label)
-        axes[1, 0].plot(t, s["explosible_area_m2"] * 1e6, ".-", label=label)
-        axes[1, 1].plot(t, s["densest_lifted_behind_shock_m"] * 1e3, ".-", label=label)
+        colour = "C%d" % k
+        axes[0, 0].plot(t, s["lifted_share_1"] * 100.0, ".-", color=colour, label=label)
+        axes[0, 1].plot(t, s["height_p90_m"] * 1e3, ".-", color=colour, label=label)
+        axes[1, 0].plot(t, s["explosible_area_m2"] * 1e6, ".-", color=colour, label=label)
+        axes[1, 1].plot(t, s["first_lifted_behind_shock_m"] * 1e3, ".-", color=colour,
+                        label=label + ": first lifted column")
+        axes[1, 1].plot(t, s["densest_lifted_behind_shock_m"] * 1e3, ".--", color=colour,
+                        label=label + ": densest lifted column")
     titles = [("Lifted share of the layer's mass", "lifted share [%]"),
               ("Height holding 90 % of the lifted mass", "height above layer top [mm]"),
               ("Area at or above the explosible concentration", "area [mm$^2$]"),
-              ("Densest lifted column behind the shock", "distance [mm]")]
+              ("Lifted columns behind the shock", "distance behind the shock [mm]")]
     for ax, (title, ylabel) in zip(axes.flat, titles):
         ax.set_title(title)
         ax.set_ylabel(ylabel)
@@ -77,6 +81,7 @@ def main(argv):
     for ax in axes[1]:
         ax.set_xlabel("time [ms]")
     axes[0, 0].legend(fontsize=8)
+    axes[1, 1].legend(fontsize=7)
     fig.tight_layout()
     out = args.out or os.path.join(args.sweepdir, "dust_cloud.png")
     fig.savefig(out, dpi=120)
@@ -84,16 +89,16 @@ def main(argv):
     print("wrote", out)
 
     lines = ["| run | t [ms] | lifted [g/m] | share [%] | h50 / h90 / h99 [mm] | cloud top [mm] | "
-             "explosible area [mm²] | lifted T max / mean [K] | densest column behind shock [mm] |",
+             "explosible area [mm²] | lifted T max / mean [K] | first / densest lifted column behind shock [mm] |",
              "|---|---|---|---|---|---|---|---|---|"]
     for row, s in runs:
         k = -1
-        lines.append("| %s | %.3f | %.3g | %.3g | %.3g / %.3g / %.3g | %.3g | %.3g | %.1f / %.1f | %.3g |" % (
+        lines.append("| %s | %.3f | %.3g | %.3g | %.3g / %.3g / %.3g | %.3g | %.3g | %.1f / %.1f | %.3g / %.3g |" % (
             label_of(row, keys), s["time_s"][k] * 1e3, s["lifted_mass_kg_per_m"][k] * 1e3,
             s["lifted_share_1"][k] * 100.0, s["height_p50_m"][k] * 1e3, s["height_p90_m"][k] * 1e3,
             s["height_p99_m"][k] * 1e3, s["cloud_top_m"][k] * 1e3, s["explosible_area_m2"][k] * 1e6,
             s["lifted_temperature_max_K"][k], s["lifted_temperature_mean_K"][k],
-            s["densest_lifted_behind_shock_m"][k] * 1e3))
+            s["first_lifted_behind_shock_m"][k] * 1e3, s["densest_lifted_behind_shock_m"][k] * 1e3))
     table = "\n".join(lines)
     print(table)
     if args.table:
