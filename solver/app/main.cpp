@@ -3,6 +3,7 @@
 // Exit codes: 0 success, 2 bad input (scene, options, output folder, checkpoint),
 // 3 numerical failure, 4 interrupted (SIGINT/SIGTERM; checkpoint written).
 // `run --restart CHECKPOINT` continues a run in its folder (docs/reliability.md).
+#include <map>
 #include <fmt/core.h>
 #include <omp.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 #include "insitu/checkpoint.hpp"
 #include "insitu/lifting_delay.hpp"
 #include "solver/app/info.hpp"
+#include "solver/scene/scene_keys.hpp"
 #include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/app/sweep.hpp"
@@ -210,7 +212,12 @@ int main(int argc, char** argv) {
 
   auto* info = app.add_subcommand(
       "info", "print the resolved scene, enabled effects, grid and step estimate");
-  info->add_option("scene", scene_path, "scene file (TOML)")->required();
+  std::vector<std::string> info_scenes;
+  bool keys = false;
+  info->add_option("scene", info_scenes, "scene file (TOML); with --keys, one or more")->required();
+  info->add_flag("--keys", keys,
+                 "print the scene-key reference (type, unit, default, allowed values, meaning) of "
+                 "every key the scenes' parser reads, as Markdown");
   info->add_option("--set", overrides, "override a scene key (repeatable)")
       ->allow_extra_args(false);
 
@@ -228,8 +235,16 @@ int main(int argc, char** argv) {
           "only `dustlift run` runs on several MPI ranks ({} here); start `{}` without mpirun",
           world->size(), info->parsed() ? "info" : "sweep"));
     }
+    if (info->parsed() && keys) {
+      if (!overrides.empty()) throw SceneError("info --keys: the reference is of the scene files as written (no --set)");
+      std::map<std::string, KeyFact> facts;
+      for (const std::string& path : info_scenes) merge_key_facts(facts, read_scene_keys(path));
+      fmt::print("{}", key_reference_markdown(facts));
+      return kExitSuccess;
+    }
     if (info->parsed()) {
-      const Scene scene = load_scene(scene_path, overrides);
+      if (info_scenes.size() != 1) throw SceneError("info: give one scene file (several only with --keys)");
+      const Scene scene = load_scene(info_scenes.front(), overrides);
       const Simulation sim(scene);
       print_info(scene, sim);
       return kExitSuccess;

@@ -3,6 +3,7 @@
 // Every default lives in the parse functions (solver/scene/parse_*.cpp) and is
 // written back into `resolved_toml`, which a run stores in its output folder.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "solver/coupling/coupling_config.hpp"
 #include "solver/dem/dem_config.hpp"
 #include "solver/gas/gas_config.hpp"
+#include "solver/scene/key_fact.hpp"
 
 namespace dustlift {
 
@@ -128,6 +130,11 @@ struct Scene {
 /// Reads, overrides (`key.path=value`, TOML value syntax; bare words are strings) and
 /// validates a scene. Throws SceneError naming file, line and key on any problem.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// What the parser did with each key of the scene at `path` (declared, read, its default or
+/// what the default is derived from, its range): the scene-key reference's facts
+/// (solver/scene/scene_keys.hpp). Throws SceneError as load_scene does.
+std::map<std::string, KeyFact> read_scene_keys(const std::string& path);
 
 /// Same, from TOML text (`name` stands in for the file in messages).
 Scene parse_scene(const std::string& text, const std::string& name,

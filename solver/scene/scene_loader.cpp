@@ -62,8 +62,10 @@ std::string apply_override(toml::table& doc, const std::string& assignment) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& name,
-                  const std::vector<std::string>& overrides) {
+namespace {
+
+Scene parse_scene_into(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
+                       ParseContext& context) {
   toml::table doc;
   try {
     doc = toml::parse(text, name);
@@ -72,7 +74,6 @@ Scene parse_scene(const std::string& text, const std::string& name,
     s << name << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
     throw SceneError(s.str());
   }
-  ParseContext context;
   for (const auto& o : overrides) context.overrides.emplace_back(apply_override(doc, o), o);
 
   Scene scene;
@@ -109,6 +110,20 @@ Scene parse_scene(const std::string& text, const std::string& name,
   }
   scene.resolved_toml = out.str();
   return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name,
+                  const std::vector<std::string>& overrides) {
+  ParseContext context;
+  return parse_scene_into(text, name, overrides, context);
+}
+
+std::map<std::string, KeyFact> read_scene_keys(const std::string& path) {
+  ParseContext context;
+  (void)parse_scene_into(read_input_file(path, "scene file"), path, {}, context);
+  return context.keys;
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {

@@ -74,11 +74,25 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 /// A value as TOML text (the shortest that reads back to the same double).
 std::string toml_text(double v) { return fmt::format("{}", v); }
 
+std::string list_text(const std::vector<double>& v) {
+  std::string text = "[";
+  for (std::size_t k = 0; k < v.size(); ++k) text += (k ? ", " : "") + toml_text(v[k]);
+  return text + "]";
+}
+
+std::string list_text(const std::vector<std::string>& v) {
+  std::string text = "[";
+  for (std::size_t k = 0; k < v.size(); ++k) text += (k ? ", \"" : "\"") + v[k] + "\"";
+  return text + "]";
+}
+
 }  // namespace
 
 void TableReader::expect_keys(std::initializer_list<std::string_view> keys) {
   expected_.assign(keys.begin(), keys.end());
   declared_ = true;
+  if (context_ != nullptr)
+    for (std::string_view k : keys) context_->keys.try_emplace(reference_key(full_key(k)));
   if (table_ == nullptr) return;
   for (const auto& [k, v] : *table_) {
     if (std::find(expected_.begin(), expected_.end(), k.str()) != expected_.end()) continue;
@@ -91,6 +105,23 @@ void TableReader::expect_keys(std::initializer_list<std::string_view> keys) {
     throw SceneError(where(&v, full_key(k.str())) + ": key '" + full_key(k.str()) + "': unknown key" +
                      (best.empty() ? "" : " (did you mean '" + full_key(best) + "'?)"));
   }
+}
+
+std::string reference_key(const std::string& full) {
+  std::string out;
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    if (full[i] == '[') {  // an array of tables' entry: "output.bands[1].name" -> "output.bands.name"
+      while (i < full.size() && full[i] != ']') ++i;
+      continue;
+    }
+    out += full[i];
+  }
+  return out;
+}
+
+void TableReader::note_fact(std::string_view key, std::string kind, std::string fallback, std::string range) {
+  if (context_ == nullptr || read_depth_ != 1) return;
+  context_->keys[reference_key(full_key(key))] = KeyFact{std::move(kind), std::move(fallback), std::move(range)};
 }
 
 std::string TableReader::full_key(std::string_view key) const {
@@ -144,12 +175,16 @@ bool TableReader::is_array(std::string_view key) const {
 }
 
 double TableReader::derived_number(std::string_view key, double derived, const std::string& from, Range range) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "number", "from " + from, range.describe());
   if (auto v = optional_number(key, range)) return *v;
   note_derived(key, toml_text(derived), from);
   return derived;
 }
 
 bool TableReader::derived_boolean(std::string_view key, bool derived, const std::string& from) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "boolean", "from " + from);
   if (has(key)) return boolean(key, derived);
   mark(key);
   note_derived(key, derived ? "true" : "false", from);
@@ -158,6 +193,8 @@ bool TableReader::derived_boolean(std::string_view key, bool derived, const std:
 
 std::vector<double> TableReader::derived_number_list(std::string_view key, const std::vector<double>& derived,
                                                      const std::string& from, Range range) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "list of numbers", "from " + from, range.describe());
   if (has(key)) return number_list(key, derived, range);
   mark(key);
   std::string text = "[";
@@ -167,6 +204,10 @@ std::vector<double> TableReader::derived_number_list(std::string_view key, const
 }
 
 void TableReader::note_derived(std::string_view key, const std::string& toml, const std::string& from) {
+  if (context_ != nullptr) {
+    // The kind stays the reader's (a scene that sets the key records it).
+    context_->keys[reference_key(full_key(key))].fallback = "from " + from;
+  }
   if (context_ != nullptr) context_->derived.push_back(full_key(key) + " = " + toml + "   # from " + from);
 }
 
@@ -183,6 +224,8 @@ static const char* type_name(const toml::node& n) {
 }
 
 std::optional<double> TableReader::optional_number(std::string_view key, Range range) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "number", "optional", range.describe());
   mark(key);
   const toml::node* n = node(key);
   if (n == nullptr) return std::nullopt;
@@ -205,6 +248,8 @@ std::optional<double> TableReader::optional_number(std::string_view key, Range r
 }
 
 double TableReader::number(std::string_view key, double fallback, Range range) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "number", toml_text(fallback), range.describe());
   auto v = optional_number(key, range);
   if (!v) {
     if (out_ != nullptr) out_->insert_or_assign(key, fallback);
@@ -214,6 +259,8 @@ double TableReader::number(std::string_view key, double fallback, Range range) {
 }
 
 double TableReader::required_number(std::string_view key, Range range) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "number", "required", range.describe());
   auto v = optional_number(key, range);
   if (!v) fail(key, "missing required number (" + range.describe() + ")");
   return *v;
@@ -221,6 +268,9 @@ double TableReader::required_number(std::string_view key, Range range) {
 
 long long TableReader::integer(std::string_view key, long long fallback, long long min,
                                long long max) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "integer", std::to_string(fallback),
+            "in [" + std::to_string(min) + ", " + (max == std::numeric_limits<long long>::max() ? std::string("...") : std::to_string(max)) + "]");
   mark(key);
   const toml::node* n = node(key);
   long long v = fallback;
@@ -238,6 +288,8 @@ long long TableReader::integer(std::string_view key, long long fallback, long lo
 }
 
 bool TableReader::boolean(std::string_view key, bool fallback) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "boolean", fallback ? "true" : "false");
   mark(key);
   const toml::node* n = node(key);
   bool v = fallback;
@@ -251,6 +303,8 @@ bool TableReader::boolean(std::string_view key, bool fallback) {
 }
 
 std::string TableReader::string(std::string_view key, std::string fallback) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "string", "\"" + fallback + "\"");
   mark(key);
   const toml::node* n = node(key);
   std::string v = std::move(fallback);
@@ -264,6 +318,8 @@ std::string TableReader::string(std::string_view key, std::string fallback) {
 }
 
 std::string TableReader::path(std::string_view key) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "file", "required", "relative to the scene file");
   std::string given = string(key, "");
   if (given.empty()) fail(key, "missing required file path");
   const std::string resolved = resolve_path(given);
@@ -279,6 +335,8 @@ std::string TableReader::resolve_path(const std::string& given) const {
 }
 
 std::vector<std::string> TableReader::existing_file_list(std::string_view key, std::vector<std::string> fallback) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "list of files", list_text(fallback), "relative to the scene file");
   namespace fs = std::filesystem;
   std::vector<std::string> v = string_list(key, std::move(fallback));
   for (auto& given : v) {
@@ -297,6 +355,12 @@ std::vector<std::string> TableReader::existing_file_list(std::string_view key, s
 
 std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::initializer_list<std::string_view> allowed) {
+  ReadScope scope(read_depth_);
+  {
+    std::string list;
+    for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
+    note_fact(key, "one of", "\"" + fallback + "\"", list);
+  }
   std::string v = string(key, std::move(fallback));
   if (std::find(allowed.begin(), allowed.end(), v) == allowed.end()) {
     std::string list;
@@ -308,6 +372,8 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
 
 std::vector<double> TableReader::number_list(std::string_view key, std::vector<double> fallback,
                                              Range range) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "list of numbers", list_text(fallback), range.describe());
   mark(key);
   const toml::node* n = node(key);
   std::vector<double> v = std::move(fallback);
@@ -341,6 +407,8 @@ std::vector<double> TableReader::number_list(std::string_view key, std::vector<d
 }
 
 std::vector<std::string> TableReader::string_list(std::string_view key, std::vector<std::string> fallback) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "list of strings", list_text(fallback));
   mark(key);
   const toml::node* n = node(key);
   std::vector<std::string> v = std::move(fallback);
@@ -363,6 +431,8 @@ std::vector<std::string> TableReader::string_list(std::string_view key, std::vec
 }
 
 TableReader TableReader::table(std::string_view key, bool required) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "table", required ? "required" : "optional");
   mark(key);
   const toml::node* n = node(key);
   if (n == nullptr && required) fail(key, "missing required table");
@@ -377,6 +447,8 @@ TableReader TableReader::table(std::string_view key, bool required) {
 }
 
 std::vector<TableReader> TableReader::table_array(std::string_view key) {
+  ReadScope scope(read_depth_);
+  note_fact(key, "array of tables", "none");
   mark(key);
   std::vector<TableReader> result;
   const toml::node* n = node(key);

@@ -8,6 +8,7 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include <toml++/toml.h>
+
+#include "solver/scene/key_fact.hpp"
 
 namespace dustlift {
 
@@ -43,6 +46,10 @@ struct Range {
 /// <kind>", "cannot open <kind>") otherwise.
 std::string read_input_file(const std::string& path, const std::string& kind);
 
+/// A key as the scene-key reference names it: the entries of an array of tables without
+/// their index ("output.bands[1].name" -> "output.bands.name").
+std::string reference_key(const std::string& full);
+
 /// What all readers of one scene share.
 struct ParseContext {
   /// The --set overrides as (dotted key, "key=value"): a value that came from one is named by
@@ -50,6 +57,9 @@ struct ParseContext {
   std::vector<std::pair<std::string, std::string>> overrides;
   /// Derived defaults used, as "key = value  # from ..." (comments of the resolved scene).
   std::vector<std::string> derived;
+  /// Every key declared or read, by dotted name (an array of tables' entries as
+  /// "output.bands.name"): what the parser did with it.
+  std::map<std::string, KeyFact> keys;
 };
 
 class TableReader {
@@ -116,6 +126,16 @@ class TableReader {
   /// "file:line", or "--set 'a.b=v'" when the value (or the table holding it) came from one.
   std::string where(const toml::node* n, const std::string& full) const;
   void mark(std::string_view key);
+  /// Notes what the outermost read of `key` did (nested reads, e.g. number() inside
+  /// derived_number(), leave the outer one's fact).
+  void note_fact(std::string_view key, std::string kind, std::string fallback, std::string range = {});
+  /// The read methods count their nesting here (note_fact records at depth 1 only).
+  int read_depth_ = 0;
+  struct ReadScope {
+    int& depth;
+    explicit ReadScope(int& d) : depth(++d) {}
+    ~ReadScope() { --depth; }
+  };
 
   const toml::table* table_;
   std::string prefix_;

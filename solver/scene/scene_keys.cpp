@@ -1,0 +1,311 @@
+// The scene keys' units and meanings (scene_keys.hpp). The defaults, ranges and types are not
+// written here: the parser records them as it reads (KeyFact), so they cannot drift from it.
+#include "solver/scene/scene_keys.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+
+namespace dustlift {
+namespace {
+
+constexpr SceneKeyDoc kDocs[] = {
+    // [run]
+    {"run", "", "the run: its name, end time and step limits"},
+    {"run.name", "", "the run's name (log, files' field data)"},
+    {"run.end_time", "s", "simulated time at which the run ends"},
+    {"run.max_steps", "1", "stop after this many steps (0: no limit)"},
+    {"run.progress_interval", "s", "wall time between progress lines in the log"},
+    {"run.skip_at_rest", "",
+     "skip gas cells and parcels that rest exactly (bitwise the same results)"},
+    {"run.rest_tolerance", "1",
+     "also skip what is within this relative change of rest (changes results at that level; one "
+     "MPI rank)"},
+    {"run.rebalance_steps", "1",
+     "MPI: steps between moves of the slab cuts that follow the work (0: never)"},
+    // [grid]
+    {"grid", "", "the rectilinear grid: [grid.x] along the channel, [grid.y] up"},
+    {"grid.*", "",
+     "one axis: uniform (cells) or a uniform core with geometrically stretched ends (cell_size)"},
+    {"grid.*.start", "m", "the axis' first face (y: the floor)"},
+    {"grid.*.end", "m", "the axis' last face"},
+    {"grid.*.cells", "1", "cells of a uniform axis (not with cell_size)"},
+    {"grid.*.cell_size", "m", "cell width of the uniform core"},
+    {"grid.*.uniform_start", "m", "where the uniform core starts (cells below it are stretched)"},
+    {"grid.*.uniform_end", "m", "where the uniform core ends (cells above it are stretched)"},
+    {"grid.*.cells_below", "1", "stretched cells between start and uniform_start"},
+    {"grid.*.cells_above", "1", "stretched cells between uniform_end and end"},
+    // [gas]
+    {"gas", "", "the gas model and scheme"},
+    {"gas.thermo", "",
+     "thermally perfect air (NASA polynomials, O2:N2 = 1:3.76) or a calorically perfect gas"},
+    {"gas.gamma", "1", "ratio of specific heats (calorically perfect gas)"},
+    {"gas.gas_constant", "J/(kg K)", "specific gas constant"},
+    {"gas.gravity", "m/s^2", "body acceleration [g_x, g_y] on the gas"},
+    {"gas.transport", "", "viscosity and heat conduction"},
+    {"gas.transport.model", "",
+     "Euler (inviscid), constant mu, Sutherland's law, or Gordon's fits with Wilke's mixing rule"},
+    {"gas.transport.viscosity", "Pa s", "dynamic viscosity of the constant model"},
+    {"gas.transport.prandtl", "1", "Prandtl number (constant and Sutherland models)"},
+    {"gas.transport.sutherland_mu_ref", "Pa s",
+     "Sutherland: viscosity at the reference temperature"},
+    {"gas.transport.sutherland_t_ref", "K", "Sutherland: reference temperature"},
+    {"gas.transport.sutherland_s", "K", "Sutherland's constant"},
+    {"gas.scheme", "", "the convective scheme (SLAU2 fluxes, SSP-RK3 in time)"},
+    {"gas.scheme.reconstruction", "", "first order, or MUSCL of 2nd or 3rd order (kappa = 1/3)"},
+    {"gas.scheme.limiter", "", "slope limiter of the MUSCL reconstruction"},
+    {"gas.scheme.minmod_b", "1", "compression parameter b of the minmod limiter"},
+    {"gas.scheme.cfl", "1", "Courant number of the gas time step"},
+    // [boundary]
+    {"boundary", "", "the grid's four edges"},
+    {"boundary.left", "", "the edge at grid.x.start"},
+    {"boundary.right", "", "the edge at grid.x.end"},
+    {"boundary.bottom", "", "the floor, at grid.y.start"},
+    {"boundary.top", "", "the edge at grid.y.end"},
+    {"boundary.inflow", "",
+     "the state an inflow edge holds (default: the initial state beside it)"},
+    // [initial]
+    {"initial", "", "the gas at t = 0"},
+    {"initial.kind", "",
+     "uniform state, a Riemann problem, or a shock of given Mach number into a state at rest"},
+    {"initial.state", "", "uniform: the state; shock: the quiescent state ahead of the shock"},
+    {"initial.left", "", "Riemann: the state below position"},
+    {"initial.right", "", "Riemann: the state above position"},
+    {"initial.position", "m", "Riemann and shock: where the split or the shock is"},
+    {"initial.axis", "", "Riemann and shock: the split's normal (the shock moves towards +axis)"},
+    {"initial.mach", "1", "shock: Mach number relative to the sound speed of the state ahead"},
+    // A gas state: initial.state, initial.left, initial.right, boundary.inflow.
+    {"*.*.p", "Pa", "a gas state's pressure"},
+    {"*.*.rho", "kg/m^3", "a gas state's density (give rho or T)"},
+    {"*.*.T", "K", "a gas state's temperature (give rho or T)"},
+    {"*.*.u", "m/s", "a gas state's velocity along x"},
+    {"*.*.v", "m/s", "a gas state's velocity along y"},
+    // [particles]
+    {"particles", "", "the dust: real particles, DEM parcels, the layer"},
+    {"particles.enabled", "",
+     "false switches the dust off (the rest of the dust's settings stay unread)"},
+    {"particles.diameter", "m",
+     "real particle diameter (derived: the mass median of a size distribution)"},
+    {"particles.density", "kg/m^3", "material density of the real particles"},
+    {"particles.heat_capacity", "J/(kg K)", "specific heat of the particles"},
+    {"particles.temperature", "K", "the particles' temperature at t = 0"},
+    {"particles.parcel_diameter", "m",
+     "DEM parcel diameter n_xy d (coarse graining; at most the smallest cell)"},
+    {"particles.real_per_parcel", "1/m",
+     "real particles per parcel per metre of span (masses are per metre of span)"},
+    {"particles.courant", "1",
+     "nu_DEM: DEM sub-step = nu sqrt(smallest real-particle mass / largest spring constant)"},
+    {"particles.skin", "1", "neighbour-list skin, in parcel diameters"},
+    {"particles.fast_skin_substeps", "1", "sub-steps a fast parcel's skin covers at its speed"},
+    {"particles.gravity", "m/s^2", "true (g along -y) or a vector [g_x, g_y] on the parcels"},
+    {"particles.g", "m/s^2", "the magnitude with gravity = true"},
+    {"particles.layer", "", "the rectangle the layer generator fills with parcels at rest"},
+    {"particles.layer.x_min", "m", "the layer's upstream end"},
+    {"particles.layer.x_max", "m", "the layer's downstream end"},
+    {"particles.layer.y_min", "m", "the layer's bottom"},
+    {"particles.layer.y_max", "m", "the layer's top (heights in the outputs count from it)"},
+    {"particles.layer.volume_fraction", "1",
+     "3-D solid volume fraction of the layer (the parcels' 2-D areal fraction equals it)"},
+    {"particles.layer.arrangement", "",
+     "how parcels are placed: lattice, jittered lattice, touching columns, offset rows, settled "
+     "under gravity, or a file"},
+    {"particles.layer.settle", "", "let the layer settle under gravity before t = 0"},
+    {"particles.layer.seed", "1",
+     "seed of the random placement and of the size classes' assignment"},
+    {"particles.layer.file", "",
+     "arrangement = \"file\": CSV of x, y, diameter, vx, vy, omega, temperature, "
+     "particle_diameter"},
+    {"particles.layer.loose_top_rows", "1", "the top rows that keep only a share of their sites"},
+    {"particles.layer.loose_top_fill", "1", "the share of sites the loose top rows keep"},
+    {"particles.size_distribution", "",
+     "a polydisperse layer: discrete classes, or a log-normal mass distribution cut into classes"},
+    {"particles.size_distribution.diameters", "m",
+     "discrete classes: real particle diameters, ascending"},
+    {"particles.size_distribution.mass_fractions", "1",
+     "discrete classes: each class's share of the layer's mass (sum 1)"},
+    {"particles.size_distribution.median", "m", "log-normal: mass median diameter"},
+    {"particles.size_distribution.geometric_std", "1",
+     "log-normal: geometric standard deviation sigma_g (> 1)"},
+    {"particles.size_distribution.classes", "1",
+     "log-normal: the equal-mass classes it is cut into"},
+    {"particles.contact", "", "the parcel-parcel spring-dashpot contact, per real particle"},
+    {"particles.wall_contact", "", "the parcel-wall contact (default: the parcel-parcel one)"},
+    {"particles.*.k_n", "N/m", "normal spring constant"},
+    {"particles.*.k_t", "N/m", "tangential spring constant"},
+    {"particles.*.damping", "N s/m", "dashpot coefficient, normal and tangential"},
+    {"particles.*.coulomb", "", "limit the tangential force to friction times the normal force"},
+    {"particles.*.friction", "1", "Coulomb friction coefficient"},
+    // [coupling]
+    {"coupling", "", "the gas-particle effects (each on or off)"},
+    {"coupling.two_way", "", "the particles act back on the gas (porosity and exchange terms)"},
+    {"coupling.drag", "",
+     "drag (Clift-Gauvin with Parmar's compressibility and the dense-array factor)"},
+    {"coupling.compressibility_correction", "", "Parmar et al.'s Mach-number factor of the drag"},
+    {"coupling.volume_fraction_correction", "",
+     "dense-array drag factor: Sangani et al., Tenneti et al., linear, or none"},
+    {"coupling.volume_fraction_cap", "1",
+     "the solid fraction at which the dense-array factor stops growing"},
+    {"coupling.magnus", "", "the Magnus (rotational) lift force"},
+    {"coupling.magnus_coefficient", "1", "C_LM of the Magnus force"},
+    {"coupling.magnus_convention", "", "the paper's sign convention or the standard one"},
+    {"coupling.lun_liu", "", "Lun & Liu's Reynolds-number dependence of the lift coefficient"},
+    {"coupling.pressure_force", "", "the pressure-gradient force -V_p grad p"},
+    {"coupling.added_mass", "", "the inviscid-unsteady (added-mass) force of Parmar et al."},
+    {"coupling.added_mass_volume_fraction", "",
+     "Zuber's volume-fraction factor of the added mass, or none"},
+    {"coupling.rotation_torque", "",
+     "the fluid torque on a spinning particle (Dennis, Singh & Ingham)"},
+    {"coupling.torque_stokes_below", "1",
+     "rotational Reynolds number below which the Stokes torque is used"},
+    {"coupling.heat_transfer", "",
+     "convective heat transfer (Ranz-Marshall) and the particle temperature"},
+    {"coupling.interpolation", "", "how gas values are sampled at a parcel: triangle or bilinear"},
+    {"coupling.influence_width", "m",
+     "width of the kernel that deposits a parcel's volume and exchange on the cells"},
+    {"coupling.max_volume_fraction", "1",
+     "largest particle volume fraction the gas sees (porosity floor 1 - this)"},
+    // [output]
+    {"output", "", "files, series and checkpoints"},
+    {"output.interval", "s",
+     "simulated time between VTK outputs and series rows (0: start and end only)"},
+    {"output.vtk", "", "write gas.pvd and parcels.pvd"},
+    {"output.shock_threshold", "1", "relative pressure rise that marks the shock"},
+    {"output.checkpoint_interval", "s",
+     "simulated time between checkpoints (0: none by simulated time)"},
+    {"output.checkpoint_wall_interval", "s",
+     "wall time after which the next step writes a checkpoint (0: none)"},
+    {"output.surface_threshold", "1", "alpha_p level that defines the dust surface"},
+    {"output.surface_stations", "m", "x of the columns whose surface height is a series"},
+    {"output.bands", "",
+     "force-history bands: parcels that start in a box (default: the paper's two)"},
+    {"output.bands.name", "", "the band's name (series forces_<name>)"},
+    {"output.bands.x_min", "m", "the box's upstream end"},
+    {"output.bands.x_max", "m", "the box's downstream end"},
+    {"output.bands.y_min", "m", "the box's bottom"},
+    {"output.bands.y_max", "m", "the box's top"},
+    {"output.band_bin_width", "s", "bins of the time since shock arrival"},
+    {"output.band_duration", "s", "the last bin's end"},
+    {"output.contact_window", "s", "averaging window of the contact force"},
+    {"output.probes", "", "gauges: the gas values of the cell holding a point"},
+    {"output.probes.name", "", "the probe's name (columns <name>_<field>)"},
+    {"output.probes.x", "m", "the point's x"},
+    {"output.probes.y", "m", "the point's y"},
+    {"output.probes.fields", "", "what to record: p, rho, u, v, T, mach, alpha_p"},
+    {"output.probe_interval", "s", "simulated time between probe samples (0: every step)"},
+    {"output.parcel_fronts", "", "series of the parcels' x-extent (a particle curtain's fronts)"},
+    {"output.dust_cloud", "",
+     "series of the lifted dust cloud (mass, heights, explosible area, distances behind the "
+     "shock)"},
+    {"output.cloud_lift_height", "m",
+     "a parcel is lifted when its centre is this far above the initial layer top"},
+    {"output.explosible_concentration", "g/m^3",
+     "dust concentration counted as explosible (a minimum explosible concentration)"},
+    {"output.cloud_edge_concentration", "g/m^3", "dust concentration that marks the cloud's top"},
+    // [insitu]
+    {"insitu", "", "in-situ visualisation"},
+    {"insitu.catalyst", "", "ParaView Catalyst pipelines run on the live state"},
+    {"insitu.catalyst.scripts", "", "Catalyst Python scripts"},
+    {"insitu.catalyst.interval_steps", "1", "deliver every this many steps"},
+    {"insitu.catalyst.interval", "s",
+     "simulated time between deliveries (not with interval_steps)"},
+    {"insitu.catalyst.live", "", "also a pipeline that connects to ParaView Live"},
+    {"insitu.catalyst.live_url", "", "host:port of the ParaView GUI for Live"},
+};
+
+bool matches(std::string_view pattern, std::string_view key) {
+  while (true) {
+    const std::size_t p = pattern.find('.'), k = key.find('.');
+    const std::string_view ps = pattern.substr(0, p), ks = key.substr(0, k);
+    if (ps != "*" && ps != ks) return false;
+    if (p == std::string_view::npos || k == std::string_view::npos) return p == k;
+    pattern.remove_prefix(p + 1);
+    key.remove_prefix(k + 1);
+  }
+}
+
+std::string cell(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out.empty() ? "" : out;
+}
+
+}  // namespace
+
+std::span<const SceneKeyDoc> scene_key_docs() {
+  return kDocs;
+}
+
+const SceneKeyDoc* find_key_doc(std::string_view key) {
+  for (const SceneKeyDoc& d : kDocs)
+    if (matches(d.pattern, key)) return &d;
+  return nullptr;
+}
+
+void merge_key_facts(std::map<std::string, KeyFact>& into,
+                     const std::map<std::string, KeyFact>& from) {
+  for (const auto& [key, fact] : from) {
+    auto [it, inserted] = into.try_emplace(key, fact);
+    if (inserted) continue;
+    KeyFact& have = it->second;
+    if (have.kind.empty()) have.kind = fact.kind;
+    if (have.range.empty()) have.range = fact.range;
+    if (have.fallback.empty()) {
+      have.fallback = fact.fallback;
+    } else if (!fact.fallback.empty() && fact.fallback != have.fallback) {
+      // A literal default that follows other keys, or derived in one scene and literal in
+      // another: the derived text says more.
+      if (fact.fallback.rfind("from ", 0) == 0)
+        have.fallback = fact.fallback;
+      else if (have.fallback.rfind("from ", 0) != 0)
+        have.fallback = "depends on the scene";
+    }
+  }
+}
+
+std::string key_reference_markdown(const std::map<std::string, KeyFact>& facts) {
+  // One row per documented pattern, with the facts of the keys it matches.
+  std::string out =
+      "# Scene keys\n\n"
+      "Every key a scene file (TOML) may hold: its type, unit, default and allowed values as the "
+      "parser reads them, and what it means. Units are SI; masses are per metre of span (the 2-D "
+      "run's depth). A default \"from ...\" is derived from other keys when the key is not set "
+      "(`dustlift info SCENE` prints the value it takes); \"required\" keys have none; "
+      "\"optional\" sections and keys are used only when present. A `*` stands for any one name "
+      "(`grid.*.cells`: `grid.x.cells`, `grid.y.cells`; `initial.*.p`: the pressure of "
+      "`initial.state`, `initial.left`, `initial.right`).\n\n"
+      "Generated from the parser and the keys' documentation (`solver/scene/scene_keys.cpp`) by "
+      "`bash scripts/scene-keys.sh`, which runs `dustlift info --keys` over the repository's "
+      "scenes; a test fails when this file is stale. Do not edit it by hand.\n";
+  std::string section;
+  std::vector<std::string> undocumented;
+  for (const auto& [key, fact] : facts)
+    if (find_key_doc(key) == nullptr) undocumented.push_back(key);
+  for (const SceneKeyDoc& d : kDocs) {
+    const KeyFact* fact = nullptr;
+    for (const auto& [key, f] : facts)
+      if (matches(d.pattern, key) && find_key_doc(key) == &d &&
+          (fact == nullptr || fact->kind.empty()))
+        fact = &f;
+    if (fact == nullptr) continue;
+    const std::string pattern(d.pattern);
+    const std::string top = pattern.substr(0, pattern.find('.'));
+    if (top != section) {
+      section = top;
+      out += fmt::format(
+          "\n## [{}]\n\n| key | type | unit | default | allowed | meaning "
+          "|\n|---|---|---|---|---|---|\n",
+          section);
+    }
+    out +=
+        fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", pattern, cell(fact->kind),
+                    cell(std::string(d.unit)), cell(fact->fallback),
+                    cell(fact->range == "finite" ? "" : fact->range), cell(std::string(d.meaning)));
+  }
+  if (!undocumented.empty()) {
+    out += "\n## Undocumented\n\n";
+    for (const auto& k : undocumented) out += "- `" + k + "`\n";
+  }
+  return out;
+}
+
+}  // namespace dustlift
