@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 9's coupled parcel-sub-step rate against the standalone DEM, measured in one sitting
+# The coupled parcel-sub-step rate against the standalone DEM, measured in one sitting
 # (docs/performance.md, "Measured"): the standalone DEM benchmark (bench_dem_layer, median of
 # REPS repetitions) right before and right after a paper-scene run to END on THREADS threads,
 # then the coupled rate (parcel-sub-steps stepped per second of coupled time: sample, implicit exchange,

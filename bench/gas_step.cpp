@@ -62,7 +62,7 @@ void BM_GasStepInviscidCaloricallyPerfect(benchmark::State& s) {
   run_steps(s, TransportModel::Inviscid, ThermoModel::CaloricallyPerfect);
 }
 
-/// The paper's grid (section 3.1 as read in physics-reference 4): 0.25 mm cells on
+/// The paper's grid (section 3.1 as read in docs/dem.md): 0.25 mm cells on
 /// [0, 400 mm] x [0, 32 mm], 300 stretched cells upstream and 32 above: 1900 x 160 cells.
 void BM_GasStepPaperGrid(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));

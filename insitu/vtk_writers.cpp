@@ -1,5 +1,5 @@
 // VTK side of the writers. Inline binary + zlib: ParaView 5.11 as packaged reads
-// appended data as empty with newer libexpat (see /work/shared/toolchain-notes.md).
+// appended data as empty with newer libexpat (inline binary reads in every version).
 #include "insitu/vtk_writers.hpp"
 
 #include <vtkCellData.h>

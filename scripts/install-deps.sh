@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package dustlift needs (build, tests, renders, figures).
-# See ../shared/toolchain-notes.md: libvtk9-dev conflicts with python3-paraview,
+# Debian 12: libvtk9-dev conflicts with python3-paraview,
 # so C++ builds against ParaView's bundled VTK (paraview-dev + libglew-dev).
 # The second group is what find_package(ParaView COMPONENTS Catalyst PythonCatalyst) needs
 # for the Catalyst adaptor (cmake/catalyst.cmake): Debian's paraview-dev does not pull it in.

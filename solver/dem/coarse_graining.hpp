@@ -1,6 +1,6 @@
 #pragma once
 // Coarse graining of the paper's 2-D variant of Sakai's method (eq. 11;
-// physics-reference.md §4). A parcel of diameter n_xy d is a cylinder of unit depth that
+// docs/dem.md). A parcel of diameter n_xy d is a cylinder of unit depth that
 // stands for n_i = n_xy^2 n_z real spheres of diameter d per metre of depth. Pure functions.
 #include <numbers>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Linear spring–dashpot contact (paper Table 1; physics-reference.md §3.6–§3.7).
+// Linear spring–dashpot contact (paper Table 1; docs/dem.md).
 // Pure functions: the closed-form restitution and contact time of the law, and the
 // 2-D contact kernel shared by parcel–parcel and parcel–wall contacts.
 #include <cmath>

@@ -2,7 +2,7 @@
 // Settings of the DEM parcel system, as resolved from a scene (SI units).
 // Owned by the DEM module; parsed in solver/scene/parse_particles.cpp, where every
 // default below is also written into the resolved scene. Paper values: Table 2 and
-// physics-reference.md §3.6–§4; the garbled or missing items are documented in docs/dem.md.
+// docs/dem.md; the garbled or missing items are documented in docs/dem.md.
 #include <array>
 #include <cstdint>
 #include <limits>

@@ -1,5 +1,5 @@
 #pragma once
-// Coarse-grained DEM parcels (paper eqs. 5–6, 11, 18; physics-reference.md §3.6–§4) as
+// Coarse-grained DEM parcels (paper eqs. 5–6, 11, 18; docs/dem.md) as
 // structure-of-arrays, with a cell-sorted Verlet neighbour list that carries the
 // per-pair tangential history, axis-aligned walls, optional periodicity in x, and
 // symplectic Euler sub-steps.

@@ -29,7 +29,7 @@ inline double temperature_of(const PrimitiveState& s, double gas_constant) {
 struct ThermoConfig {
   ThermoModel model = ThermoModel::ThermallyPerfect;
   double gamma = 1.4;              ///< calorically perfect only
-  double gas_constant = 288.190;   ///< J/(kg K); air O2:N2 = 1:3.76 (physics-reference 1.2)
+  double gas_constant = 288.190;   ///< J/(kg K); air O2:N2 = 1:3.76 (docs/gas-solver.md)
 };
 
 struct TransportConfig {

@@ -1,4 +1,4 @@
-// The gas solver: SLAU2 + MUSCL, porosity-weighted fluxes (physics-reference 2.1), central
+// The gas solver: SLAU2 + MUSCL, porosity-weighted fluxes (docs/gas-solver.md), central
 // viscous terms, SSP-RK3 (Shu-Osher), ghost-cell boundaries. See docs/gas-solver.md. This
 // file: construction, the initial state, the primitives from the conserved state, and access
 // to the state; gas_solver_impl.hpp names the files of the other parts.

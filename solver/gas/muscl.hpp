@@ -1,5 +1,5 @@
 #pragma once
-// MUSCL reconstruction of one primitive variable at a face (van Leer; physics-reference 2.2),
+// MUSCL reconstruction of one primitive variable at a face (van Leer; docs/gas-solver.md),
 // in index space so that it applies unchanged on the stretched grid.
 // Face i+1/2 lies between cells i and i+1; the stencil is q_{i-1}, q_i, q_{i+1}, q_{i+2}.
 //   q^L = q_i     + 1/4 [(1-k) D-~_i     + (1+k) D+~_i]

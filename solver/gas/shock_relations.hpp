@@ -1,5 +1,5 @@
 #pragma once
-// Rankine-Hugoniot jump of a normal shock (physics-reference 5.2), for either thermodynamic
+// Rankine-Hugoniot jump of a normal shock (docs/gas-solver.md), for either thermodynamic
 // model: closed form for the calorically perfect gas; for thermally perfect air the shock-frame
 // conservation of mass, momentum and total enthalpy with h(T) is solved numerically.
 #include "solver/gas/gas_config.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// SLAU2 numerical flux (Kitamura & Shima 2013, JCP 245, 62-83; physics-reference 2.1):
+// SLAU2 numerical flux (Kitamura & Shima 2013, JCP 245, 62-83; docs/gas-solver.md):
 // a pure function of the reconstructed left/right states and the unit face normal.
 #include <algorithm>
 #include <cmath>

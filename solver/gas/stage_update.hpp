@@ -4,7 +4,7 @@
 //   L(U) = -div F + S with the porosity pressure term in well-balanced form
 //          -(a_{i+1/2} (p~_{i+1/2} - p_i) - a_{i-1/2} (p~_{i-1/2} - p_i)) / dx
 //   (= -(a p~)_{i+1/2} + (a p~)_{i-1/2} + p_i (a_{i+1/2} - a_{i-1/2}), i.e. a grad p written as
-//   div(a p) - p grad a, physics-reference 2.1), and
+//   div(a p) - p grad a, docs/gas-solver.md), and
 //   U <- U0 + c (U - U0 + dt L(U))   (Shu-Osher stage with c_old = 1 - c),
 // which leaves a cell whose L is exactly zero bitwise unchanged: a gas at rest with uniform
 // p and T over any porosity stays exactly at rest, and a cell whose conserved state did not

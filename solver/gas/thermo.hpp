@@ -2,7 +2,7 @@
 // Gas thermodynamics (paper eq. 4 and section 2.1): p = rho R T with either
 //  - a calorically perfect gas (constant gamma), or
 //  - thermally perfect air, O2:N2 = 1:3.76 by mole, cp(T) from NASA 7-coefficient
-//    polynomials (McBride, Gordon & Reno 1993, NASA TM-4513; physics-reference 1.2).
+//    polynomials (McBride, Gordon & Reno 1993, NASA TM-4513; docs/gas-solver.md).
 // Both expose the same inline interface so the solver's loops are templated on the model
 // (chosen once at construction, no per-cell virtual call).
 //
@@ -52,7 +52,7 @@ struct Nasa7 {
   std::array<double, 7> a;
 };
 
-/// NASA TM-4513 coefficients (physics-reference 1.2), ranges 200-1000 K and 1000-6000 K.
+/// NASA TM-4513 coefficients (docs/gas-solver.md), ranges 200-1000 K and 1000-6000 K.
 namespace nasa7 {
 inline constexpr Nasa7 kN2Low{{3.53100528E+00, -1.23660987E-04, -5.02999437E-07, 2.43530612E-09,
                                -1.40881235E-12, -1.04697628E+03, 2.96747468E+00}};

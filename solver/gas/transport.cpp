@@ -7,7 +7,7 @@
 namespace dustlift {
 namespace {
 
-// NASA CEA trans.inp coefficients (physics-reference 1.3 table).
+// NASA CEA trans.inp coefficients (docs/gas-solver.md).
 constexpr GordonFit kN2ViscosityLow{0.62526577, -31.779652, -1640.7983, 1.7454992};
 constexpr GordonFit kN2ViscosityHigh{0.87395209, 561.52222, -173948.09, -0.39335958};
 constexpr GordonFit kN2ConductivityLow{0.85439436, 105.73224, -12347.848, 0.47793128};

@@ -1,5 +1,5 @@
 #pragma once
-// Gas transport properties (paper section 2.1; physics-reference 1.3):
+// Gas transport properties (paper section 2.1; docs/gas-solver.md):
 //  - Constant: mu fixed, lambda = mu cp(T) / Pr;
 //  - Sutherland: mu = mu_ref (T/T_ref)^{3/2} (T_ref + S)/(T + S), lambda = mu cp(T) / Pr;
 //  - GordonWilke: per-species fits ln(eta) = A ln T + B/T + C/T^2 + D (Gordon, McBride &
@@ -31,7 +31,7 @@ TransportProperties nitrogen_transport(double T);
 TransportProperties oxygen_transport(double T);
 
 /// Wilke's mixing rule for a binary mixture of mole fractions x1, x2 and molar masses m1, m2.
-/// The same viscosity-based Phi_ij also mixes the conductivities (physics-reference 1.3).
+/// The same viscosity-based Phi_ij also mixes the conductivities (docs/gas-solver.md).
 TransportProperties wilke_binary_mixture(const TransportProperties& s1, double x1, double m1,
                                          const TransportProperties& s2, double x2, double m2);
 

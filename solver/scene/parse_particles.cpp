@@ -1,11 +1,12 @@
 // [particles]: the DEM parcel system (owned by the DEM module). Defaults are the paper's
-// (Table 2, physics-reference.md §3.7, §4); choices where the paper is silent or garbled
+// (Table 2, docs/dem.md); choices where the paper is silent or garbled
 // are explained in docs/dem.md.
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "solver/dem/coarse_graining.hpp"
+#include "solver/dem/contact_law.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/size_distribution.hpp"
 #include "solver/scene/parcel_file.hpp"
@@ -19,15 +20,27 @@ namespace {
 
 /// [particles.contact], or [particles.wall_contact] whose defaults are the contact's
 /// (`from` names it: they are derived, so a resolved scene with another contact law follows it).
-ContactParams parse_contact(TableReader t, const ContactParams& fallback, const char* from = nullptr) {
-  t.expect_keys({"k_n", "k_t", "damping", "coulomb", "friction"});
+/// The dashpot is given (`damping`) or follows from a normal restitution coefficient for a
+/// pair of particles of reduced mass `m_eff` (at a wall: a particle of mass `m_eff`).
+ContactParams parse_contact(TableReader t, const ContactParams& fallback, double m_eff, const char* from = nullptr) {
+  t.expect_keys({"k_n", "k_t", "damping", "restitution", "coulomb", "friction"});
   const auto number = [&](const char* key, double v, Range r) {
     return from != nullptr ? t.derived_number(key, v, std::string(from) + "." + key, r) : t.number(key, v, r);
   };
   ContactParams c;
   c.k_n = number("k_n", fallback.k_n, Range::positive());
   c.k_t = number("k_t", fallback.k_t, Range::non_negative());
-  c.damping = number("damping", fallback.damping, Range::non_negative());
+  if (t.has("restitution")) {
+    // The linear law's e_n = exp(-pi zeta / sqrt(1 - zeta^2)) inverted for the dashpot.
+    if (t.has("damping")) t.fail("restitution", "give either damping or restitution, not both");
+    const double e = t.required_number("restitution", Range::open_closed(0.0, 1.0));
+    c.damping = t.derived_number("damping", damping_for_restitution(m_eff, c.k_n, e),
+                                 t.full_key("restitution") + ", k_n and the particles' mass (" +
+                                     (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") + ")",
+                                 Range::non_negative());
+  } else {
+    c.damping = number("damping", fallback.damping, Range::non_negative());
+  }
   const bool coulomb = from != nullptr ? t.derived_boolean("coulomb", std::isfinite(fallback.friction), std::string(from) + ".coulomb")
                                        : t.boolean("coulomb", std::isfinite(fallback.friction));
   if (coulomb) {
@@ -149,6 +162,14 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   } else {
     if (lt.has("file")) lt.fail("file", "only used with arrangement = \"file\"");
     if (poly) check_class_sizes(dist, sd, dem, grid);  // before the plan, which needs them to fit
+    // A size in the wrong unit (40 for 40 um) would otherwise surface as a packing error.
+    const double depth = L.y_max - L.y_min, cell = min_cell_width(grid);
+    if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
+      t.fail(size_key, fmt::format("{:.9g} m parcels do not fit {}: {:.9g} m (lengths are in metres: 40 um is 40e-6)",
+                                   dem.parcel_diameter,
+                                   dem.parcel_diameter > depth ? "the layer's depth" : "the smallest grid cell",
+                                   dem.parcel_diameter > depth ? depth : cell));
+    }
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
     L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
@@ -208,8 +229,10 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                          Range::positive());
   }
 
-  dem.contact = parse_contact(t.table("contact"), dem.contact);
-  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, "particles.contact");
+  // Restitution is of two particles of particles.diameter (reduced mass m/2), or of one at a wall (m).
+  const double particle_mass = dem.density * sphere_volume(dem.particle_diameter);
+  dem.contact = parse_contact(t.table("contact"), dem.contact, 0.5 * particle_mass);
+  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
 
   // The parcels live in the gas domain: its edges are walls for them, except where the
   // gas is periodic (then the parcels are periodic too). Parcels never leave the grid.
@@ -224,8 +247,21 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   if (boundary.bottom == BoundaryKind::Periodic) {
     t.fail("enabled", "parcels need walls at the bottom and top of the grid (boundary.bottom/top periodic)");
   }
-  if (L.x_min < D.x_min || L.x_max > D.x_max || L.y_min < D.y_min || L.y_max > D.y_max) {
-    t.fail("layer", "the layer rectangle must lie inside the grid");
+  // Which edge leaves the grid, against the grid's bounds.
+  const struct {
+    const char* key;
+    double value, bound;
+    bool outside;
+    const char* side;
+  } edges[] = {{"x_min", L.x_min, D.x_min, L.x_min < D.x_min, "grid.x.start"},
+               {"x_max", L.x_max, D.x_max, L.x_max > D.x_max, "grid.x.end"},
+               {"y_min", L.y_min, D.y_min, L.y_min < D.y_min, "grid.y.start"},
+               {"y_max", L.y_max, D.y_max, L.y_max > D.y_max, "grid.y.end"}};
+  for (const auto& e : edges) {
+    if (e.outside)
+      lt.fail(e.key, fmt::format("{:.9g} m lies outside the grid ({} = {:.9g} m): the layer rectangle must lie "
+                                 "inside x in [{:.9g}, {:.9g}] m, y in [{:.9g}, {:.9g}] m",
+                                 e.value, e.side, e.bound, D.x_min, D.x_max, D.y_min, D.y_max));
   }
 
   dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));

@@ -132,7 +132,11 @@ constexpr SceneKeyDoc kDocs[] = {
     {"particles.wall_contact", "", "the parcel-wall contact (default: the parcel-parcel one)"},
     {"particles.*.k_n", "N/m", "normal spring constant"},
     {"particles.*.k_t", "N/m", "tangential spring constant"},
-    {"particles.*.damping", "N s/m", "dashpot coefficient, normal and tangential"},
+    {"particles.*.damping", "N s/m",
+     "dashpot coefficient, normal and tangential (or give restitution)"},
+    {"particles.*.restitution", "1",
+     "normal restitution coefficient of two particles of particles.diameter (a wall: of one); the "
+     "damping follows"},
     {"particles.*.coulomb", "", "limit the tangential force to friction times the normal force"},
     {"particles.*.friction", "1", "Coulomb friction coefficient"},
     // [coupling]

@@ -1,4 +1,4 @@
-// Closed-form spring–dashpot relations and the contact kernel (physics-reference.md §3.6–§3.7).
+// Closed-form spring–dashpot relations and the contact kernel (docs/dem.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Layer generator and coarse graining (physics-reference.md §4).
+// Layer generator and coarse graining (docs/dem.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>

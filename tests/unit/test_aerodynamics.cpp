@@ -1,5 +1,5 @@
 // Gas-particle force, torque and heat models against tabulated and analytic values
-// (physics-reference.md §3 and §5.3).
+// (docs/coupling.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,7 +24,7 @@ TEST(Drag, CliftGauvinStandardCurve) {
 }
 
 TEST(Drag, ParmarCompressibleTableMatches) {
-  // physics-reference.md §3.1 table C_D(M, Re).
+  // docs/coupling.md C_D(M, Re).
   struct Point { double re, m, cd; };
   const Point table[] = {
       {1, 0.0, 27.6000},   {1, 0.8, 27.0638},    {1, 1.5, 26.5968},    {10, 0.3, 4.1476},

@@ -1,5 +1,9 @@
 // The command line end to end: exit codes, error messages naming the key, no partial output.
 #include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkNew.h>
@@ -222,6 +226,37 @@ INSTANTIATE_TEST_SUITE_P(
                       BadScene{"negative_density", "--set initial.left.rho=-1", "initial.left.rho"},
                       BadScene{"bad_cfl", "--set gas.scheme.cfl=1.5", "gas.scheme.cfl"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Cli, MaterialAndLayerMistakesNameTheKeyAndTheBounds) {
+  const std::string quickstart = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml";
+  const auto dir = fresh_dir("bad_material");
+  // The layer's downstream end beyond the grid: the key, the grid's edge and its bounds.
+  auto r = run_cli("run " + quickstart + " --out " + (dir / "a").string() + " --set particles.layer.x_max=0.5");
+  expect_bad_input(r, "particles.layer.x_max", dir / "a", "layer outside");
+  EXPECT_NE(r.output.find("grid.x.end = 0.15 m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("x in [-0.06, 0.15] m, y in [-0.002, 0.03] m"), std::string::npos) << r.output;
+  // A diameter in micrometres: the diameter is named, not the volume fraction.
+  r = run_cli("run " + quickstart + " --out " + (dir / "b").string() + " --set particles.diameter=40");
+  expect_bad_input(r, "particles.diameter", dir / "b", "diameter in um");
+  EXPECT_NE(r.output.find("lengths are in metres"), std::string::npos) << r.output;
+  std::ifstream in(quickstart);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string no_damping = std::regex_replace(text.str(), std::regex("\\ndamping = [^\\n]*"), "");
+  // Both a damping and a restitution: refused, naming the restitution.
+  r = run_cli("run " + quickstart + " --out " + (dir / "c").string() + " --set particles.contact.restitution=0.9");
+  expect_bad_input(r, "particles.contact.restitution", dir / "c", "damping and restitution");
+  // A restitution instead of the damping: it follows for two 100 um particles, and info says so.
+  write_file(dir / "restitution.toml", no_damping + "\n");
+  r = run_cli("info " + (dir / "restitution.toml").string() + " --set particles.contact.restitution=0.9");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("restitution 0.9 between two particles of 100 um"), std::string::npos) << r.output;
+  // h = -2 ln e sqrt(m_eff k_n) / sqrt(pi^2 + ln^2 e), m_eff = rho pi d^3 / 12.
+  const double m_eff = 980.0 * M_PI * 1e-12 / 12.0, l = std::log(0.9);
+  const double h = -2.0 * l * std::sqrt(m_eff * 5e4) / std::sqrt(M_PI * M_PI + l * l);
+  EXPECT_NE(r.output.find(fmt::format("particles.contact.damping = {}", h)), std::string::npos) << h << "\n" << r.output;
+  fs::remove_all(dir);
+}
 
 TEST(Cli, UnknownKeyInFileNamesFileAndLine) {
   const auto dir = fresh_dir("bad_file");

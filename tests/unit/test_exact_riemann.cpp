@@ -1,4 +1,4 @@
-// Exact Riemann solver against Toro's Sod values (physics-reference 5.1) and its own invariants.
+// Exact Riemann solver against Toro's Sod values (docs/gas-solver.md) and its own invariants.
 #include <gtest/gtest.h>
 
 #include <cmath>

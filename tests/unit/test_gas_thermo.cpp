@@ -1,4 +1,4 @@
-// Thermodynamics: NASA-7 air against the reference values of physics-reference 1.2,
+// Thermodynamics: NASA-7 air against the reference values of docs/gas-solver.md,
 // range continuity, and the safeguarded Newton inversion e -> T.
 #include <gtest/gtest.h>
 

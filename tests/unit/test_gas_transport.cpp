@@ -1,4 +1,4 @@
-// Transport: Gordon fits + Wilke rule against physics-reference 1.3, Sutherland, the model switch.
+// Transport: Gordon fits + Wilke rule against docs/gas-solver.md, Sutherland, the model switch.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Rankine-Hugoniot jumps against physics-reference 5.2 (Ms = 1.44 into air, 101 kPa, 300 K),
+// Rankine-Hugoniot jumps against docs/gas-solver.md (Ms = 1.44 into air, 101 kPa, 300 K),
 // and the shock-frame conservation laws of the numeric thermally perfect solve.
 #include <gtest/gtest.h>
 

@@ -27,7 +27,7 @@ TEST(DemCollisionScene, HeadOnPairFromALayerFileReboundsWithTheSpringDashpotRest
   sim.run("");
   const double e = (velocity_of(1) - velocity_of(0)) / (v0 - v1);
 
-  // physics-reference.md §3.6-3.7 with the real-particle mass: m_eff = m/2.
+  // docs/dem.md with the real-particle mass: m_eff = m/2.
   const auto& c = scene.particles.contact;
   const double m = scene.particles.density * sphere_volume(scene.particles.particle_diameter);
   const double zeta = c.damping / (2.0 * std::sqrt(0.5 * m * c.k_n));

@@ -1,4 +1,4 @@
-// DEM verification (physics-reference.md §5.4): head-on pair and wall impacts against the
+// DEM verification (docs/gas-solver.md): head-on pair and wall impacts against the
 // spring–dashpot formulas, oblique impact (rotation sign, angular momentum), energy in a
 // closed box, and bitwise thread independence.
 #include <gtest/gtest.h>

@@ -62,7 +62,7 @@ double run_until(Simulation& sim, double t_end) {
 }  // namespace
 
 TEST(Coupling, SingleParcelDragRelaxationMatchesReferenceOde) {
-  // physics-reference.md §5.3: frozen post-shock gas of the Ms = 1.44 shock (gamma = 1.4 row),
+  // docs/gas-solver.md: frozen post-shock gas of the Ms = 1.44 shock (gamma = 1.4 row),
   // particle from rest, drag only with Parmar xi_1 and xi_2 = 1: v(100 us) = 29.3039 m/s,
   // v(500 us) = 95.8161 m/s (RK4 reference). One-way coupling keeps the gas frozen.
   const Scene scene = parse_scene(

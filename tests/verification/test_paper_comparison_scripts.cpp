@@ -74,7 +74,7 @@ TEST(PaperComparisonScripts, MeasureAReducedPaperRunAsTheCodeDefinesIt) {
   ASSERT_EQ(cstatus, 0) << coutput;
   const std::string json = read_file(json_path);
 
-  // Shock: x0 + W t with W = 500.7 m/s (thermally perfect air, physics-reference 5.2).
+  // Shock: x0 + W t with W = 500.7 m/s (thermally perfect air, docs/gas-solver.md).
   EXPECT_NEAR(json_number(json, "shock_x_mm"), -1.0 + 500.7e3 * 6e-5, 2.0) << json;
   // Columnar layer: the undisturbed top is the layer top, y = 0, to round-off.
   EXPECT_NEAR(json_number(json, "layer_top_mm"), 0.0, 1e-9);

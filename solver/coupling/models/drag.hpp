@@ -3,7 +3,7 @@
 // Clift & Gauvin, Parmar's compressibility factor xi_1(M, Re) and the volume-fraction factor
 // xi_2(alpha_g); its sub-step coefficient K = beta at the step's slip and the sub-step force
 // F = K u_r at the parcel's current slip. Garbled print forms in the paper are corrected as
-// physics-reference.md §3 explains.
+// docs/coupling.md explains.
 #include <string>
 
 #include "solver/core/vec2.hpp"
@@ -15,7 +15,7 @@ struct CouplingConfig;
 
 namespace aero {
 
-/// Standard drag curve, Clift & Gauvin (1970); physics-reference §3.1 (the paper's print lacks
+/// Standard drag curve, Clift & Gauvin (1970); docs/coupling.md (the paper's print lacks
 /// the 0.687 exponent and multiplies where it should divide).
 double cd_standard(double re);
 /// Re * C_D,std: finite as Re -> 0 (Stokes limit 24).

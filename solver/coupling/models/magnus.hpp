@@ -1,5 +1,5 @@
 #pragma once
-// Magnus lift (Table 1, physics-reference §3.2 and docs/coupling.md): the published law per
+// Magnus lift (Table 1, docs/coupling.md and docs/coupling.md): the published law per
 // real particle, F = C_LM (pi/8) rho d^3 Omega_r z x u_r (with the convention's sign); its
 // sub-step coefficient M = s C_LM (pi/8) rho d^3 (s the convention's sign, C_LM with the
 // optional Lun-Liu factor at the step's Re) and the sub-step force F = M w_r z x u_r at the
@@ -16,7 +16,7 @@ struct CouplingConfig;
 
 namespace aero {
 
-/// Magnus lift conventions (physics-reference §3.2 and docs/coupling.md):
+/// Magnus lift conventions (docs/coupling.md and docs/coupling.md):
 /// Standard (Rubinow-Keller): F = C (pi/8) rho d^3 Omega_r z x u_r with Omega_r = omega_z/2 -
 /// omega_p. Paper: the paper's clockwise-positive rotation, which equals -(Standard) for the same
 /// state and gives the upward lift over the layer that the paper reports.

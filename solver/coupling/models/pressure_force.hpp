@@ -1,5 +1,5 @@
 #pragma once
-// Pressure-gradient force (Table 1, physics-reference §3.3): F = -V_p grad p per real particle
+// Pressure-gradient force (Table 1, docs/coupling.md): F = -V_p grad p per real particle
 // (the paper prints +). The gradient is frozen over the CFD step, so the sampled force is the
 // sub-step's as it is (ParcelSystem's pressure_fx/fy columns, added to the parcel's force and
 // not exchanged: the gas feels it through alpha_g grad p).
