@@ -165,7 +165,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     // A size in the wrong unit (40 for 40 um) would otherwise surface as a packing error.
     const double depth = L.y_max - L.y_min, cell = min_cell_width(grid);
     if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
-      t.fail(size_key, fmt::format("{:.9g} m parcels do not fit {}: {:.9g} m (lengths are in metres: 40 um is 40e-6)",
+      t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are in metres (40 um is 40e-6)",
                                    dem.parcel_diameter,
                                    dem.parcel_diameter > depth ? "the layer's depth" : "the smallest grid cell",
                                    dem.parcel_diameter > depth ? depth : cell));
