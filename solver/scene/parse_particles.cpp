@@ -18,14 +18,23 @@
 namespace dustlift::scene_detail {
 namespace {
 
+/// Where a material property left out of a scene comes from: not a silent default but the
+/// paper's dust, named so (with its value) in the resolved scene and the key reference.
+std::string paper_material(double value) {
+  return fmt::format("the paper's 100 um dust, {:g} (Tables 1, 2): not given, set it for your dust", value);
+}
+
 /// [particles.contact], or [particles.wall_contact] whose defaults are the contact's
 /// (`from` names it: they are derived, so a resolved scene with another contact law follows it).
 /// The dashpot is given (`damping`) or follows from a normal restitution coefficient for a
 /// pair of particles of reduced mass `m_eff` (at a wall: a particle of mass `m_eff`).
 ContactParams parse_contact(TableReader t, const ContactParams& fallback, double m_eff, const char* from = nullptr) {
   t.expect_keys({"k_n", "k_t", "damping", "restitution", "coulomb", "friction"});
+  // The parcel-parcel law's constants are the paper's 100 um dust's unless given: they are
+  // noted as taken from it (resolved scene, info), never silent.
   const auto number = [&](const char* key, double v, Range r) {
-    return from != nullptr ? t.derived_number(key, v, std::string(from) + "." + key, r) : t.number(key, v, r);
+    return from != nullptr ? t.derived_number(key, v, std::string(from) + "." + key, r)
+                           : t.derived_number(key, v, paper_material(v), r);
   };
   ContactParams c;
   c.k_n = number("k_n", fallback.k_n, Range::positive());
@@ -95,9 +104,10 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
         "diameter", dist.mass_median, "particles.size_distribution (its mass median diameter)",
         Range::positive());
   } else {
-    dem.particle_diameter = t.number("diameter", dem.particle_diameter, Range::positive());
+    dem.particle_diameter =
+        t.derived_number("diameter", dem.particle_diameter, paper_material(dem.particle_diameter), Range::positive());
   }
-  dem.density = t.number("density", dem.density, Range::positive());
+  dem.density = t.derived_number("density", dem.density, paper_material(dem.density), Range::positive());
   dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
   const bool parcel_diameter_given = t.has("parcel_diameter");
