@@ -1,6 +1,7 @@
-// [particles]: the DEM parcel system (owned by the DEM module). Defaults are the paper's
-// (Table 2, docs/dem.md); choices where the paper is silent or garbled
-// are explained in docs/dem.md.
+// [particles]: the DEM parcel system (owned by the DEM module). The dust's material (diameter,
+// density, contact stiffness, damping or restitution) has no defaults; the numerical settings
+// default to the paper's (Table 2); choices where the paper is silent or garbled are explained
+// in docs/dem.md.
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -37,8 +38,11 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
                            : t.derived_number(key, v, paper_material(v), r);
   };
   ContactParams c;
-  c.k_n = number("k_n", fallback.k_n, Range::positive());
-  c.k_t = number("k_t", fallback.k_t, Range::non_negative());
+  // The parcel-parcel law's stiffness is the dust's (required); k_t follows the paper's ratio.
+  c.k_n = from != nullptr ? number("k_n", fallback.k_n, Range::positive()) : t.required_number("k_n", Range::positive());
+  c.k_t = from != nullptr ? number("k_t", fallback.k_t, Range::non_negative())
+                          : t.derived_number("k_t", 0.002 * c.k_n, t.full_key("k_n") + " (k_t = 0.002 k_n, the paper's ratio)",
+                                             Range::non_negative());
   if (t.has("restitution")) {
     // The linear law's e_n = exp(-pi zeta / sqrt(1 - zeta^2)) inverted for the dashpot.
     if (t.has("damping")) t.fail("restitution", "give either damping or restitution, not both");
@@ -47,8 +51,14 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
                                  t.full_key("restitution") + ", k_n and the particles' mass (" +
                                      (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") + ")",
                                  Range::non_negative());
-  } else {
+  } else if (from != nullptr) {
     c.damping = number("damping", fallback.damping, Range::non_negative());
+  } else {
+    if (!t.has("damping"))
+      t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the damping then follows for "
+                                    "two particles of particles.diameter, reduced mass {:.4g} kg)",
+                                    m_eff));
+    c.damping = t.required_number("damping", Range::non_negative());
   }
   const bool coulomb = from != nullptr ? t.derived_boolean("coulomb", std::isfinite(fallback.friction), std::string(from) + ".coulomb")
                                        : t.boolean("coulomb", std::isfinite(fallback.friction));
@@ -104,10 +114,10 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
         "diameter", dist.mass_median, "particles.size_distribution (its mass median diameter)",
         Range::positive());
   } else {
-    dem.particle_diameter =
-        t.derived_number("diameter", dem.particle_diameter, paper_material(dem.particle_diameter), Range::positive());
+    // The dust's size and density have no defaults: they are the user's dust's.
+    dem.particle_diameter = t.required_number("diameter", Range::positive());
   }
-  dem.density = t.derived_number("density", dem.density, paper_material(dem.density), Range::positive());
+  dem.density = t.required_number("density", Range::positive());
   dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
   const bool parcel_diameter_given = t.has("parcel_diameter");
@@ -241,7 +251,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
 
   // Restitution is of two particles of particles.diameter (reduced mass m/2), or of one at a wall (m).
   const double particle_mass = dem.density * sphere_volume(dem.particle_diameter);
-  dem.contact = parse_contact(t.table("contact"), dem.contact, 0.5 * particle_mass);
+  dem.contact = parse_contact(t.table("contact", true), dem.contact, 0.5 * particle_mass);
   dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
 
   // The parcels live in the gas domain: its edges are walls for them, except where the

@@ -255,7 +255,13 @@ void merge_key_facts(std::map<std::string, KeyFact>& into,
     if (have.range.empty()) have.range = fact.range;
     if (have.fallback.empty()) {
       have.fallback = fact.fallback;
-    } else if (!fact.fallback.empty() && fact.fallback != have.fallback) {
+    } else if (!fact.fallback.empty() && fact.fallback != have.fallback &&
+               (fact.fallback == "required" || have.fallback == "required") &&
+               (fact.fallback.rfind("from ", 0) == 0 || have.fallback.rfind("from ", 0) == 0)) {
+      // Required unless another key gives it (a size distribution, a restitution).
+      const std::string from_text = fact.fallback == "required" ? have.fallback : fact.fallback;
+      have.fallback = "required, or " + from_text;
+    } else if (!fact.fallback.empty() && fact.fallback != have.fallback && have.fallback.rfind("required, or", 0) != 0) {
       // A literal default that follows other keys, or derived in one scene and literal in
       // another: the derived text says more.
       if (fact.fallback.rfind("from ", 0) == 0)

@@ -25,6 +25,9 @@ kind = "shock"
 mach = 1.44
 position = 0.0005
 state = { p = 101.0e3, T = 300.0 }
+[particles]
+diameter = 100e-6
+density = 980.0
 [particles.layer]
 x_min = 0.0
 x_max = 0.016

@@ -34,6 +34,13 @@ y = { start = 0.0, end = 0.002, cells = 4 }
 [initial]
 kind = "uniform"
 state = { p = 101325.0, T = 300.0 }
+[particles]
+diameter = 100e-6
+density = 980.0
+[particles.contact]
+k_n = 5.0e4
+k_t = 100.0
+damping = 1.0e-4
 [particles.layer]
 x_min = 0.0
 x_max = 0.004

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "solver/dem/layer_generator.hpp"
 #include "solver/scene/scene.hpp"
@@ -26,12 +27,38 @@ kind = "uniform"
 state = { p = 101325.0, T = 300.0 }
 )";
 
-Scene parse(const std::string& particles) { return parse_scene(kBase + particles, "test.toml"); }
+/// The dust's material as the paper's (Tables 1, 2), for the keys `particles` does not set:
+/// a scene must give them (test MaterialHasNoDefaults), these tests are about the rest.
+std::vector<std::string> paper_material(const std::string& particles) {
+  if (particles.find("[particles") == std::string::npos) return {};
+  std::vector<std::string> o;
+  const auto sets = [&](const char* key) { return particles.find(std::string("\n") + key + " =") != std::string::npos; };
+  if (!sets("diameter") && particles.find("[particles.size_distribution]") == std::string::npos)
+    o.push_back("particles.diameter=100e-6");
+  if (!sets("density")) o.push_back("particles.density=980.0");
+  if (!sets("k_n")) o.push_back("particles.contact.k_n=5e4");
+  if (!sets("damping") && !sets("restitution")) o.push_back("particles.contact.damping=1e-4");
+  return o;
+}
+
+Scene parse(const std::string& particles) {
+  return parse_scene(kBase + particles, "test.toml", paper_material(particles));
+}
 
 /// The SceneError message of parsing `particles`, or "" if it parsed.
 std::string error_of(const std::string& particles) {
   try {
     parse(particles);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// The same without the paper's material filled in.
+std::string raw_error_of(const std::string& particles) {
+  try {
+    parse_scene(kBase + particles, "test.toml");
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -49,6 +76,18 @@ const std::string kDiscrete = "[particles]\n[particles.size_distribution]\n";
 TEST(SceneParticles, AbsentSectionDisablesParcels) {
   const Scene s = parse("");
   EXPECT_FALSE(s.particles.enabled);
+}
+
+TEST(SceneParticles, MaterialHasNoDefaults) {
+  // The dust's size, density, stiffness and damping are the user's: each missing one is named.
+  EXPECT_TRUE(has(raw_error_of("[particles]\n"), "particles.diameter")) << raw_error_of("[particles]\n");
+  EXPECT_TRUE(has(raw_error_of("[particles]\ndiameter = 1e-4\n"), "particles.density"));
+  EXPECT_TRUE(has(raw_error_of("[particles]\ndiameter = 1e-4\ndensity = 980.0\n"), "particles.contact"));
+  const std::string material = "[particles]\ndiameter = 1e-4\ndensity = 980.0\n[particles.contact]\n";
+  EXPECT_TRUE(has(raw_error_of(material), "particles.contact.k_n"));
+  const std::string damping = raw_error_of(material + "k_n = 5e4\n");
+  EXPECT_TRUE(has(damping, "particles.contact.damping") && has(damping, "restitution")) << damping;
+  EXPECT_EQ(raw_error_of(material + "k_n = 5e4\nrestitution = 0.957\n"), "");
 }
 
 TEST(SceneParticles, EmptySectionGivesThePaperDefaults) {
@@ -234,7 +273,7 @@ TEST(SceneSizeDistribution, ClassLargerThanTheSmallestCellIsNamed) {
       "diameters = [0.5e-3, 1.5e-3]\nmass_fractions = [0.5, 0.5]\n";
   std::string message;
   try {
-    parse_scene(text, "test.toml");
+    parse_scene(text, "test.toml", paper_material(text));
   } catch (const SceneError& err) {
     message = err.what();
   }

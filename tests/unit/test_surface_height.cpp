@@ -121,6 +121,8 @@ InitialSurface initial_surface(const std::string& arrangement, double cell) {
   const std::string text = "[run]\nend_time = 1e-5\n[grid]\nx = { start = 0.0, end = 0.02, cells = " +
                            std::to_string(nx) + " }\ny = { start = -0.002, end = 0.008, cells = " + std::to_string(ny) +
                            " }\n[initial]\nkind = \"uniform\"\nstate = { p = 101.0e3, T = 300.0 }\n"
+                           "[particles]\ndiameter = 100e-6\ndensity = 980.0\n"
+                           "[particles.contact]\nk_n = 5.0e4\nk_t = 100.0\ndamping = 1.0e-4\n"
                            "[particles.layer]\nx_min = 0.0\nx_max = 0.02\narrangement = \"" + arrangement + "\"\n";
   const Simulation sim(parse_scene(text, "layer.toml"));
   const StateView v = sim.view();

@@ -42,6 +42,13 @@ kind = "shock"
 mach = 1.44
 position = -0.002
 state = { p = 101.0e3, T = 300.0 }
+[particles]
+diameter = 100e-6
+density = 980.0
+[particles.contact]
+k_n = 5.0e4
+k_t = 100.0
+damping = 1.0e-4
 [particles.layer]
 x_min = 0.0
 x_max = 0.016

@@ -43,7 +43,13 @@ kind = "uniform"
 state = )" +
          gas_state + R"(
 [particles]
+diameter = 100e-6
+density = 980.0
 real_per_parcel = 1.0
+[particles.contact]
+k_n = 5.0e4
+k_t = 100.0
+damping = 1.0e-4
 [particles.layer]
 x_min = 0.0019
 x_max = 0.0021
@@ -133,7 +139,13 @@ top = "slip_wall"
 kind = "uniform"
 state = { p = 101325.0, T = 330.0, u = 15.0, v = -3.0 }
 [particles]
+diameter = 100e-6
+density = 980.0
 temperature = 300.0
+[particles.contact]
+k_n = 5.0e4
+k_t = 100.0
+damping = 1.0e-4
 [particles.layer]
 x_min = 0.0
 x_max = 0.008

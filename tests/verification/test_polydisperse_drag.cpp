@@ -73,7 +73,12 @@ top = "slip_wall"
 kind = "uniform"
 state = { p = 101325.0, T = 300.0, u = 50.0 }
 [particles]
+density = 980.0
 diameter = 100e-6
+[particles.contact]
+k_n = 5.0e4
+k_t = 100.0
+damping = 1.0e-4
 [particles.layer]
 arrangement = "file"
 x_min = 0.0
