@@ -1,6 +1,7 @@
 // Simulation::run: the time loop and its schedule (outputs, checkpoints, progress, stops).
 #include <chrono>
 
+#include "solver/sim/eta.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/slab_driver.hpp"
 #include "solver/sim/time_targets.hpp"
@@ -22,6 +23,7 @@ RunEnd Simulation::run(const std::string& output_dir) {
     return RunClock{time_, step_, std::chrono::duration<double>(clock::now() - t0).count()};
   };
   const double time0 = time_;
+  double eta_time = time0, eta_wall = 0.0;  // the previous progress report (eta.hpp)
   const double interval = scene_.output.interval;
   const double end = end_target(scene_.run.end_time, interval);
   // Progress lines every run.progress_interval wall seconds (every step for 0).
@@ -120,7 +122,9 @@ RunEnd Simulation::run(const std::string& output_dir) {
       p.dt = dt;
       p.step = step_;
       p.wall_seconds = now.wall;
-      p.eta_seconds = time_ > time0 ? p.wall_seconds * (end - time_) / (time_ - time0) : 0.0;
+      p.eta_seconds = remaining_wall_seconds(time_, end, now.wall, eta_time, eta_wall);
+      eta_time = time_;
+      eta_wall = now.wall;
       progress_(p);
     }
     if (stop && !at_end) {
