@@ -11,7 +11,6 @@ distances of the first and the densest lifted column behind the shock. Writes SW
 to --table when given). Exits 1 when no run has a dust-cloud series.
 """
 import argparse
-import csv
 import os
 import sys
 
@@ -19,20 +18,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    header, body = rows[0], [r for r in rows[1:] if r]
-    return header, body
-
-
-def read_series(path):
-    header, body = read_csv(path)
-    data = np.array([[float(v) for v in r] for r in body], dtype=float)
-    return {name: data[:, k] for k, name in enumerate(header)}
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_figures import read_series  # noqa: E402  (a series CSV -> dict of numpy columns)
+from plot_sweep import read_table  # noqa: E402  (a CSV -> dict of column -> list of strings)
 
 
 def label_of(row, keys):
@@ -46,11 +34,12 @@ def main(argv):
     parser.add_argument("--out", help="PNG path (default SWEEPDIR/dust_cloud.png)")
     parser.add_argument("--table", help="also write the Markdown table here")
     args = parser.parse_args(argv)
-    header, body = read_csv(os.path.join(args.sweepdir, "summary.csv"))
+    summary = read_table(os.path.join(args.sweepdir, "summary.csv"))
+    header = list(summary)
     keys = header[1:header.index("run_index_1")]
     runs = []
-    for r in body:
-        row = dict(zip(header, r))
+    for k in range(len(summary["run"])):
+        row = {name: summary[name][k] for name in header}
         path = os.path.join(args.sweepdir, row["run"], "series", "dust_cloud.csv")
         if os.path.exists(path):
             runs.append((row, read_series(path)))

@@ -72,14 +72,8 @@ class DustCloudObserver final : public Observer {
     const Grid2D& grid = *view.grid;
     if (layer_.rows() == 0) layer_.append_row(class_masses(p));  // the layer as it starts
     const Field2D& c = dust_concentration_of(view, concentration_scratch_);
-    concentration_.resize(grid.interior_cells());
-    pressure_.resize(grid.interior_cells());
-    for (int j = 0; j < grid.ny(); ++j)
-      for (int i = 0; i < grid.nx(); ++i) {
-        const std::size_t k = static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j;
-        concentration_[k] = c(i, j);
-        pressure_[k] = (*view.primitives.p)(i, j);
-      }
+    interior_values(grid, c, concentration_);
+    interior_values(grid, *view.primitives.p, pressure_);
     const std::vector<double> x_faces = grid.x().interior_faces(),
                               y_faces = grid.y().interior_faces();
     const DustCloud cloud = dust_cloud({p.x, p.y, p.mass, p.temperature, p.size_class},

@@ -11,6 +11,7 @@
 #include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
 #include "insitu/shock_position.hpp"
+#include "insitu/view_fields.hpp"
 #include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
 #include "solver/core/derivatives.hpp"
@@ -139,11 +140,7 @@ class BandForceObserver final : public Observer {
     if (!view.grid || !view.primitives.p)
       throw std::invalid_argument("BandForceObserver: the state view has no pressure field");
     const Grid2D& grid = *view.grid;
-    pressure_.resize(grid.interior_cells());
-    for (int j = 0; j < grid.ny(); ++j)
-      for (int i = 0; i < grid.nx(); ++i)
-        pressure_[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] =
-            (*view.primitives.p)(i, j);
+    interior_values(grid, *view.primitives.p, pressure_);
     if (x_centers_.empty()) {
       x_centers_ = interior_centers(grid.x());
       y_centers_ = interior_centers(grid.y());

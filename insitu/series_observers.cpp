@@ -11,20 +11,11 @@
 #include "insitu/series_table.hpp"
 #include "insitu/shock_position.hpp"
 #include "insitu/surface_height.hpp"
+#include "insitu/view_fields.hpp"
 #include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 namespace {
-
-/// Copies the interior of a field into `out` (x fastest); `transform` maps each value.
-template <class Transform>
-void interior(const Grid2D& grid, const Field2D& f, std::vector<double>& out, Transform transform) {
-  out.resize(grid.interior_cells());
-  for (int j = 0; j < grid.ny(); ++j)
-    for (int i = 0; i < grid.nx(); ++i)
-      out[static_cast<std::size_t>(i) + static_cast<std::size_t>(grid.nx()) * j] =
-          transform(f(i, j));
-}
 
 void require_grid(const StateView& view, const Field2D* field, const char* who) {
   if (!view.grid || !field)
@@ -44,9 +35,9 @@ class SurfaceHeightObserver final : public Observer {
     if (written_ && view.time == last_time_) return;  // on_finish right after an output
     const Grid2D& grid = *view.grid;
     if (view.alpha_p != nullptr) {
-      interior(grid, *view.alpha_p, alpha_p_, [](double ap) { return ap; });
+      interior_values(grid, *view.alpha_p, alpha_p_);
     } else {
-      interior(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
+      interior_values(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
     }
     const auto xc = interior_centers(grid.x());
     const auto heights = dust_surface_height(grid.y().interior_faces(), alpha_p_,
@@ -128,7 +119,7 @@ class ShockPositionObserver final : public Observer {
     require_grid(view, view.primitives.p, "ShockPositionObserver");
     if (sampled_ && view.time == last_time_) return;
     const Grid2D& grid = *view.grid;
-    interior(grid, *view.primitives.p, pressure_, [](double p) { return p; });
+    interior_values(grid, *view.primitives.p, pressure_);
     if (x_centers_.empty()) {
       x_centers_ = interior_centers(grid.x());
       y_centers_ = interior_centers(grid.y());

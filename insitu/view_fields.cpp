@@ -19,9 +19,7 @@ const Field2D& dust_concentration_of(const StateView& view, Field2D& scratch) {
   if (scratch.size() != g.size_with_ghosts()) scratch = Field2D(g);
   const double rho_p =
       view.scene != nullptr && view.scene->particles.enabled ? view.scene->particles.density : 0.0;
-  for (int j = 0; j < g.ny(); ++j)
-    for (int i = 0; i < g.nx(); ++i)
-      scratch(i, j) = view.alpha_p != nullptr ? rho_p * (*view.alpha_p)(i, j) : 0.0;
+  fill_dust_concentration(g, view.alpha_p, rho_p, scratch);
   return scratch;
 }
 

@@ -230,7 +230,20 @@ bool matches(std::string_view pattern, std::string_view key) {
 std::string cell(const std::string& s) {
   std::string out;
   for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
-  return out.empty() ? "" : out;
+  return out;
+}
+
+/// The reference's default of a key whose scenes record different ones (`earlier` merged
+/// first): required unless another key gives it (a size distribution, a restitution); a
+/// derived text says more than a literal that follows other keys (the later one wins).
+std::string combined_fallback(const std::string& earlier, const std::string& later) {
+  const auto derived = [](const std::string& f) { return f.rfind("from ", 0) == 0; };
+  if (earlier.rfind("required, or ", 0) == 0) return earlier;
+  if (earlier == "required" && derived(later)) return "required, or " + later;
+  if (later == "required" && derived(earlier)) return "required, or " + earlier;
+  if (derived(later)) return later;
+  if (derived(earlier)) return earlier;
+  return "depends on the scene";
 }
 
 }  // namespace
@@ -253,22 +266,10 @@ void merge_key_facts(std::map<std::string, KeyFact>& into,
     KeyFact& have = it->second;
     if (have.kind.empty()) have.kind = fact.kind;
     if (have.range.empty()) have.range = fact.range;
-    if (have.fallback.empty()) {
+    if (have.fallback.empty())
       have.fallback = fact.fallback;
-    } else if (!fact.fallback.empty() && fact.fallback != have.fallback &&
-               (fact.fallback == "required" || have.fallback == "required") &&
-               (fact.fallback.rfind("from ", 0) == 0 || have.fallback.rfind("from ", 0) == 0)) {
-      // Required unless another key gives it (a size distribution, a restitution).
-      const std::string from_text = fact.fallback == "required" ? have.fallback : fact.fallback;
-      have.fallback = "required, or " + from_text;
-    } else if (!fact.fallback.empty() && fact.fallback != have.fallback && have.fallback.rfind("required, or", 0) != 0) {
-      // A literal default that follows other keys, or derived in one scene and literal in
-      // another: the derived text says more.
-      if (fact.fallback.rfind("from ", 0) == 0)
-        have.fallback = fact.fallback;
-      else if (have.fallback.rfind("from ", 0) != 0)
-        have.fallback = "depends on the scene";
-    }
+    else if (!fact.fallback.empty() && fact.fallback != have.fallback)
+      have.fallback = combined_fallback(have.fallback, fact.fallback);
   }
 }
 

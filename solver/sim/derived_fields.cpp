@@ -37,12 +37,17 @@ const Field2D& DerivedFields::vorticity() const {
   return vorticity_;
 }
 
+void fill_dust_concentration(const Grid2D& grid, const Field2D* alpha_p, double particle_density,
+                             Field2D& out) {
+  for (int j = 0; j < grid.ny(); ++j)
+    for (int i = 0; i < grid.nx(); ++i)
+      out(i, j) = alpha_p != nullptr ? particle_density * (*alpha_p)(i, j) : 0.0;
+}
+
 const Field2D& DerivedFields::dust_concentration() const {
   if (concentration_step_ != step_ || step_ < 0) {
     fit(concentration_, concentration_nx_, concentration_ny_, *grid_);
-    for (int j = 0; j < grid_->ny(); ++j)
-      for (int i = 0; i < grid_->nx(); ++i)
-        concentration_(i, j) = alpha_p_ != nullptr ? particle_density_ * (*alpha_p_)(i, j) : 0.0;
+    fill_dust_concentration(*grid_, alpha_p_, particle_density_, concentration_);
     concentration_step_ = step_;
   }
   return concentration_;

@@ -8,6 +8,11 @@
 
 namespace dustlift {
 
+/// Dust concentration c = rho_p alpha_p (kg/m^3) on the interior cells of `grid` into `out`
+/// (a field of that grid); zeros when `alpha_p` is null (a gas-only scene).
+void fill_dust_concentration(const Grid2D& grid, const Field2D* alpha_p, double particle_density,
+                             Field2D& out);
+
 class DerivedFields {
  public:
   /// What the view shows now (its grid, gas and deposited alpha_p, at `step`; alpha_p null in
