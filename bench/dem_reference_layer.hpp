@@ -8,9 +8,9 @@
 #include <numbers>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/laws/contact.hpp"
 
 namespace dustlift {
 

@@ -11,20 +11,17 @@
 namespace dustlift {
 namespace {
 
-/// Whether the run computes a force part: the coupling's models say which they write (a
-/// column of zeros would read as a computed zero force, so the others are not written).
-bool computed(const StateView& v, ForcePart part) {
-  if (part == ForcePart::None || part == ForcePart::Contact) return true;
-  return v.coupling != nullptr && v.coupling->force_parts().has(part);
-}
-Vec2Columns force_part(const StateView& v, ForcePart part, const std::vector<double>& fx,
-                       const std::vector<double>& fy) {
-  return computed(v, part) ? Vec2Columns{present_column(fx), present_column(fy)} : Vec2Columns{};
+/// The force part's two columns, when an effect of the run computes it (its effect attached
+/// them); absent otherwise (a column of zeros would read as a computed zero force).
+Vec2Columns force_part(const ParcelSystem& p, ForcePart part) {
+  const ParcelColumn x = p.find_part(part, 0), y = p.find_part(part, 1);
+  if (!x.valid() || !y.valid()) return Vec2Columns{};
+  return Vec2Columns{present_column(p.column(x)), present_column(p.column(y))};
 }
 
 /// Parcel arrays straight from the parcel table (no copy): its written columns, each under
 /// its point array's name (two components make a vector), in the table's order; the force
-/// parts the run does not compute are left out. Every column is present, also on a rank
+/// parts of effects that are off do not exist. Every column is present, also on a rank
 /// without parcels (present_column).
 ParcelArraysView parcel_arrays_of(const StateView& v) {
   const ParcelSystem& p = *v.parcels;
@@ -35,7 +32,7 @@ ParcelArraysView parcel_arrays_of(const StateView& v) {
       p.id.empty() ? std::span<const std::int32_t>(&kNoId, 0) : std::span<const std::int32_t>(p.id);
   p.for_each_column([&](const ParcelColumnSpec& c, const auto& values) {
     if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<double>>) {
-      if (!c.written || (c.part != ForcePart::None && !computed(v, c.part))) return;
+      if (!c.written) return;
       const std::string& name = c.written_as.empty() ? c.name : c.written_as;
       if (name == "position") {
         (c.component == 0 ? a.position.x : a.position.y) = present_column(values);
@@ -57,9 +54,9 @@ BandParcelsView band_arrays_of(const StateView& v) {
   b.initial_position = {p.x_initial, p.y_initial};
   b.y = p.y;
   b.force_contact = {p.contact_fx, p.contact_fy};
-  b.force_drag = force_part(v, ForcePart::Drag, p.drag_fx, p.drag_fy);
-  b.force_magnus = force_part(v, ForcePart::Magnus, p.magnus_fx, p.magnus_fy);
-  b.force_pressure = force_part(v, ForcePart::Pressure, p.pressure_fx, p.pressure_fy);
+  b.force_drag = force_part(p, ForcePart::Drag);
+  b.force_magnus = force_part(p, ForcePart::Magnus);
+  b.force_pressure = force_part(p, ForcePart::Pressure);
   b.particle_rotation = p.omega;
   if (v.coupling != nullptr) {
     b.relative_rotation = p.column(v.coupling->relative_rotation_column());

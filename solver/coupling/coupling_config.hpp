@@ -2,9 +2,9 @@
 // Which gas-particle effects act, and their model options (paper Table 1, eqs. 7-16).
 // Every effect that is off costs nothing: no loop runs and no field is computed for it.
 #include "solver/coupling/grid_transfer.hpp"
-#include "solver/coupling/models/added_mass.hpp"
-#include "solver/coupling/models/drag.hpp"
-#include "solver/coupling/models/magnus.hpp"
+#include "solver/laws/added_mass.hpp"
+#include "solver/laws/drag.hpp"
+#include "solver/laws/magnus.hpp"
 
 namespace dustlift {
 

@@ -17,7 +17,7 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
       cfg_(config),
       dem_cfg_(dem),
       particle_volume_(std::numbers::pi / 6.0 * std::pow(dem.particle_diameter, 3)),
-      models_(config),
+      effects_(config),
       props_(std::make_unique<GasProperties>(gas)),
       stencils_(config.influence_width) {
   for (const SizeClass& c : dem.size_classes)
@@ -31,8 +31,8 @@ void GasParticleCoupling::make_fields() {
   alpha_p_ = Field2D(grid_);
   alpha_g_ = Field2D(grid_, 1.0);
   // Only the derived fields a model reads.
-  if (models_.reads().rotation) vorticity_ = Field2D(grid_);
-  if (models_.reads().pressure_gradient) {
+  if (effects_.reads().rotation) vorticity_ = Field2D(grid_);
+  if (effects_.reads().pressure_gradient) {
     dpdx_ = Field2D(grid_);
     dpdy_ = Field2D(grid_);
   }
@@ -67,8 +67,8 @@ void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHal
   slab_->halo = &halo;
   slab_->comm = &comm;
   // The fields a slab makes in every cell and exchanges (members: their addresses stay).
-  if (models_.reads().rotation) slab_->derived_fields.push_back(&vorticity_);
-  if (models_.reads().pressure_gradient) {
+  if (effects_.reads().rotation) slab_->derived_fields.push_back(&vorticity_);
+  if (effects_.reads().pressure_gradient) {
     slab_->derived_fields.push_back(&dpdx_);
     slab_->derived_fields.push_back(&dpdy_);
   }
@@ -123,64 +123,23 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   col_.gas_rotation = carried("gas_rotation", "rad/s");
   col_.gas_T = attach("gas_temperature", "K");
   col_.gas_p = carried("gas_pressure", "Pa");
-  col_.drag_raw = carried("drag_coefficient_sampled", "N s/m");
-  col_.heat_raw = carried("heat_coefficient_sampled", "W/K");
   col_.rest_steps = carried("rest_steps", "1");
   col_.stepped = attach("stepped", "1");
-  col_.drag = attach("drag_coefficient", "N s/m");
-  col_.magnus = attach("magnus_coefficient", "N s^2/m^2");
-  col_.torque = attach("torque_coefficient", "N m s");
-  col_.heat_coef = attach("heat_coefficient", "W/K");
   col_.impulse_x = attach("exchange_impulse_x", "N s");
   col_.impulse_y = attach("exchange_impulse_y", "N s");
   col_.work = attach("exchange_work", "J");
   col_.heat = attach("exchange_heat", "J");
   col_.relative_rotation = carried("relative_rotation", "rad/s");
-  const ForceParts& parts = models_.writes();
-  if (parts.added_mass) {
-    col_.added_mass = attach("added_mass", "kg");
-    col_.added_mass_gas_x = attach("added_mass_gas_x", "N");
-    col_.added_mass_gas_y = attach("added_mass_gas_y", "N");
-    col_.inv_total_mass = attach("inv_total_mass", "1/kg");
-    // A force part like the table's: checkpointed (resting parcels keep it), written.
-    auto force_part = [&](const char* name, int component) {
-      ParcelColumnSpec spec{name, "N", true, true};
-      spec.written_as = "force_added_mass";
-      spec.component = component;
-      spec.part = ForcePart::AddedMass;
-      return parcels.attach_column(std::move(spec));
-    };
-    col_.added_mass_fx = force_part("added_mass_fx", 0);
-    col_.added_mass_fy = force_part("added_mass_fy", 1);
+  effects_.attach(parcels);
+  stiff_sampled_.clear();
+  for (const StiffCoefficient& c : effects_.stiff_momentum()) stiff_sampled_.push_back(c.sampled);
+  for (const StiffCoefficient& c : effects_.stiff_heat()) stiff_sampled_.push_back(c.sampled);
+  // The DEM's sub-steps apply the effects' laws (a gas that moves no parcel sets nothing).
+  if (!effects_.empty()) {
+    parcels.set_forcing(
+        effects_.forcing({col_.gas_u, col_.gas_v, col_.gas_rotation, col_.gas_T, col_.impulse_x,
+                          col_.impulse_y, col_.work, col_.heat, col_.relative_rotation}));
   }
-  // The sub-step effects are what the models write.
-  GasForcing forcing;
-  forcing.drag = parts.drag;
-  forcing.magnus = parts.magnus;
-  forcing.pressure = parts.pressure;
-  forcing.torque = parts.torque;
-  forcing.heat = parts.heat;
-  forcing.gas_u = col_.gas_u;
-  forcing.gas_v = col_.gas_v;
-  forcing.gas_rotation = col_.gas_rotation;
-  forcing.gas_temperature = col_.gas_T;
-  forcing.drag_coefficient = col_.drag;
-  forcing.magnus_coefficient = col_.magnus;
-  forcing.torque_coefficient = col_.torque;
-  forcing.heat_coefficient = col_.heat_coef;
-  forcing.impulse_x = col_.impulse_x;
-  forcing.impulse_y = col_.impulse_y;
-  forcing.work = col_.work;
-  forcing.heat_in = col_.heat;
-  forcing.relative_rotation = col_.relative_rotation;
-  forcing.added_mass = parts.added_mass;
-  forcing.added_mass_coefficient = col_.added_mass;
-  forcing.added_mass_gas_x = col_.added_mass_gas_x;
-  forcing.added_mass_gas_y = col_.added_mass_gas_y;
-  forcing.inv_total_mass = col_.inv_total_mass;
-  forcing.added_mass_fx = col_.added_mass_fx;
-  forcing.added_mass_fy = col_.added_mass_fy;
-  parcels.set_gas_forcing(forcing);
   parcels.store_parts_on_last_substep_only(true);
   parcels.set_stepped_column(col_.stepped);
   parcels.build_neighbours_if_due();
@@ -232,10 +191,7 @@ void GasParticleCoupling::advance(GasSolver& gas, ParcelSystem& parcels, double 
   if (cfg_.two_way) {
     const ScopedTimer t(timings_.implicit_exchange);
     // The factors sum every parcel's sampled coefficients, rank copies' included (their owners').
-    if (parcels.decomposed()) {
-      const ParcelColumn sampled[] = {col_.drag_raw, col_.heat_raw};
-      parcels.refresh_rank_copies(sampled);
-    }
+    if (parcels.decomposed()) parcels.refresh_rank_copies(stiff_sampled_);
     apply_implicit_exchange(gas, parcels, dt);
   }
   last_substeps_ = parcels.advance(dt);

@@ -1,11 +1,12 @@
 #pragma once
 // The CFD-DEM coupling of the paper (eqs. 2-3 sources, 5-16, Fig. 3), per CFD step:
 //  1. sample the gas at every parcel (eq. 16) together with the derived fields the active
-//     models read (coupling_models.hpp), and let the models turn it into the coefficients of
-//     their sub-step laws (gas_sampling.cpp);
-//  2. sub-cycle the DEM over the CFD step (eq. 18): each sub-step applies the models' laws to
-//     the parcel's current slip, spin and temperature in the frozen sampled gas (GasForcing,
-//     fused into the DEM integrator) and sums the exchange per parcel; drag and heat exchange
+//     effects read (effects/effect_list.hpp), and let the effects turn it into the coefficients
+//     of their sub-step laws (gas_sampling.cpp);
+//  2. sub-cycle the DEM over the CFD step (eq. 18): each sub-step applies the effects' laws to
+//     the parcel's current slip, spin and temperature in the frozen sampled gas (the effects'
+//     functors fused into the DEM's forced Euler step) and sums the exchange per parcel; drag
+//     and heat exchange
 //     are first scaled by implicit exchange factors where they are stiff
 //     (implicit_exchange.cpp);
 //  3. deposit alpha_p (eq. 12) and the exchange terms f_p, s_p, q_p (eqs. 13-15) as their
@@ -26,9 +27,9 @@
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "solver/coupling/coupling_config.hpp"
-#include "solver/coupling/coupling_models.hpp"
 #include "solver/coupling/coupling_slab.hpp"
 #include "solver/coupling/deposit_stencils.hpp"
+#include "solver/coupling/effects/effect_list.hpp"
 #include "solver/coupling/resting_parcels.hpp"
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_system.hpp"
@@ -100,11 +101,10 @@ class GasParticleCoupling {
   ParcelColumn stepped_column() const { return col_.stepped; }
   ParcelColumn gas_pressure_column() const { return col_.gas_p; }
 
-  /// The force parts the active models write (the outputs leave the others out: a column of
-  /// zeros would read as a computed zero force).
-  const ForceParts& force_parts() const { return models_.writes(); }
-  /// One line per active model, for `dustlift info`.
-  std::vector<std::string> model_descriptions() const { return models_.descriptions(); }
+  /// One line per active effect, for `dustlift info`.
+  std::vector<std::string> model_descriptions() const { return effects_.descriptions(); }
+  /// The active effects (what they read, their validity).
+  const CouplingEffects& effects() const { return effects_; }
 
   /// What one advance() leaves for the next (checkpoints read it through alpha_p(),
   /// rows_touched(), rest_pressure() and rest_temperature()): the deposited alpha_p
@@ -127,15 +127,10 @@ class GasParticleCoupling {
  private:
   struct Columns {
     ParcelColumn gas_u, gas_v, gas_rotation, gas_T, gas_p;
-    ParcelColumn drag_raw, heat_raw;  ///< as sampled (the implicit exchange sums read these)
-    ParcelColumn drag, magnus, torque, heat_coef;  ///< as the sub-steps use them
     ParcelColumn impulse_x, impulse_y, work, heat;
     ParcelColumn relative_rotation;
     ParcelColumn rest_steps;  ///< consecutive steps begun exactly at rest in resting gas
     ParcelColumn stepped;     ///< 1: stepped this CFD step (ParcelSystem::set_stepped_column)
-    /// With the added-mass force: m_a, C_M V_p (-grad p), 1 / (m + m_a) and the force part.
-    ParcelColumn added_mass, added_mass_gas_x, added_mass_gas_y, inv_total_mass;
-    ParcelColumn added_mass_fx, added_mass_fy;
   };
   /// The rows holding parcels (of every rank on a slab: collective), with two rows of margin
   /// for the interpolation quad and the 3-point derivative stencils.
@@ -180,7 +175,8 @@ class GasParticleCoupling {
   double particle_volume_ = 0.0;  ///< V_p of one real particle
   /// V_p of each size class, same expression (a polydisperse layer; empty: one class).
   std::vector<double> class_volume_;
-  CouplingModels models_;
+  CouplingEffects effects_;
+  std::vector<ParcelColumn> stiff_sampled_;  ///< the sampled stiff coefficients (rank copies')
   std::unique_ptr<GasProperties> props_;
   Columns col_;
 

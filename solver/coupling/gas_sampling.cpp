@@ -14,7 +14,7 @@
 namespace dustlift {
 
 void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j0, int j1, int i1) {
-  const bool vorticity = models_.reads().rotation, gradient = models_.reads().pressure_gradient;
+  const bool vorticity = effects_.reads().rotation, gradient = effects_.reads().pressure_gradient;
   if (!vorticity && !gradient) return;
   const int nx = grid_.nx(), ny = grid_.ny();
   j0 = std::max(j0, 0);
@@ -70,7 +70,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   } else {
     i1 = 0;
   }
-  const bool vort = models_.reads().rotation, pressure = models_.reads().pressure_gradient;
+  const bool vort = effects_.reads().rotation, pressure = effects_.reads().pressure_gradient;
   if (!slab_) {
     derivatives_near_parcels(g, j0, j1, i1);
     if (vort) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
@@ -82,9 +82,9 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
     // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
     const int nx = grid_.nx();
-  // clang-format off
+    // clang-format off
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
-  // clang-format on
+    // clang-format on
     for (int j = 0; j < grid_.ny(); ++j) {
       if (vort) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
       if (pressure) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
@@ -106,20 +106,9 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   double* grot = ps.column(col_.gas_rotation).data();
   double* gT = ps.column(col_.gas_T).data();
   double* gp = ps.column(col_.gas_p).data();
-  double* K_raw = ps.column(col_.drag_raw).data();
-  double* H_raw = ps.column(col_.heat_raw).data();
-  double* K = ps.column(col_.drag).data();
-  double* M = ps.column(col_.magnus).data();
-  double* kappa = ps.column(col_.torque).data();
-  double* H = ps.column(col_.heat_coef).data();
-  const bool added_mass = col_.added_mass.valid();
-  double* m_a = added_mass ? ps.column(col_.added_mass).data() : nullptr;
-  double* am_gx = added_mass ? ps.column(col_.added_mass_gas_x).data() : nullptr;
-  double* am_gy = added_mass ? ps.column(col_.added_mass_gas_y).data() : nullptr;
-  double* inv_mt = added_mass ? ps.column(col_.inv_total_mass).data() : nullptr;
   const double* real_d = ps.real_diameter.data();  // each parcel's own real particles
-  // Batches of parcels: each is sampled, then every model runs over the whole batch (one
-  // virtual call per model and batch). Dynamic scheduling: parcels in disturbed gas cost
+  // Batches of parcels: each is sampled, then every effect runs over the whole batch (one
+  // virtual call per effect and batch). Dynamic scheduling: parcels in disturbed gas cost
   // several times those in uniform gas (whose stencils are uniform and whose drag needs no
   // logarithm), and they sit at one end of the x-ordered parcels. Each parcel's result is its
   // own: any schedule and batching gives the same bits.
@@ -128,7 +117,6 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
 #pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelMinimum)
   for (std::size_t b = 0; b < batches; ++b) {
     std::array<ModelInput, kBatch> in;
-    std::array<SubstepCoefficients, kBatch> out{};
     const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
     // The batch's stencils, then each field at all of them (a vector loop per field).
     InterpolationBatch<kBatch> quads =
@@ -172,34 +160,20 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       s.vorticity = value[kVorticity][q];
       s.dpdx = value[kDpdx][q];
       s.dpdy = value[kDpdy][q];
-      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d,
-                                    added_mass ? 1.0 / ps.inv_mass_real[k] : 0.0};
+      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d, 1.0 / ps.inv_mass_real[k]};
       const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
       in[q].slip = std::sqrt(sx * sx + sy * sy);
       in[q].re = s.rho * in[q].slip * d / s.mu;
     }
-    models_.coefficients(in.data(), out.data(), count);
+    effects_.coefficients(in.data(), k0, count, ps);
     for (std::size_t q = 0; q < count; ++q) {
       const std::size_t k = k0 + q;
       const GasSample& s = in[q].gas;
-      const SubstepCoefficients& c = out[q];
       gu[k] = s.u;
       gv[k] = s.v;
       grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
       gT[k] = s.T;
       gp[k] = s.p;
-      K_raw[k] = K[k] = c.drag;
-      M[k] = c.magnus;
-      kappa[k] = c.torque;
-      H_raw[k] = H[k] = c.heat;
-      ps.pressure_fx[k] = c.pressure_fx;
-      ps.pressure_fy[k] = c.pressure_fy;
-      if (added_mass) {
-        m_a[k] = c.added_mass;
-        am_gx[k] = c.added_mass_fx;
-        am_gy[k] = c.added_mass_fy;
-        inv_mt[k] = c.inv_total_mass;
-      }
     }
   }
   // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).

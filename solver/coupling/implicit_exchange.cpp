@@ -1,6 +1,8 @@
 // The implicit exchange factors of a CFD step (see apply_implicit_exchange in
 // gas_particle_coupling.hpp): per cell from the sums of its parcels' sampled drag and heat
 // coefficients and their capacities, then per parcel as its stencil's average.
+#include <stdexcept>
+
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/coupling/gas_properties.hpp"
 
@@ -20,10 +22,15 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
   const std::size_t reaching = c < 0 ? 0 : stencils_.parcels_reaching(grid_, ps, c);
   clear_rows(grid_, implicit_.data(), j1, c + 1);
   stencils_.plan(grid_, reaching);
-  const double* K_raw = ps.column(col_.drag_raw).data();
-  const double* H_raw = ps.column(col_.heat_raw).data();
-  double* K = ps.column(col_.drag).data();
-  double* H = ps.column(col_.heat_coef).data();
+  // The stiff coefficients: drag's (momentum) and the heat transfer's, when they are on.
+  const auto& momentum = effects_.stiff_momentum();
+  const auto& heat = effects_.stiff_heat();
+  if (momentum.size() > 1 || heat.size() > 1)
+    throw std::logic_error("implicit exchange: one stiff coefficient per exchange at most");
+  const double* K_raw = momentum.empty() ? nullptr : ps.column(momentum[0].sampled).data();
+  const double* H_raw = heat.empty() ? nullptr : ps.column(heat[0].sampled).data();
+  double* K = momentum.empty() ? nullptr : ps.column(momentum[0].applied).data();
+  double* H = heat.empty() ? nullptr : ps.column(heat[0].applied).data();
   // Per-cell sums over all parcels (the resting ones' samples are current), each in parcel
   // order (thread-independent).
   const double c_p = dem_cfg_.heat_capacity;
@@ -35,8 +42,8 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
     if (i > c) return;
     const double f = st.fraction[static_cast<std::size_t>(m)];
     ImplicitExchangeCell& r = implicit_[grid_.index(i, j)];
-    r.drag += f * (n_real[k] * K_raw[k]);
-    r.heat += f * (n_real[k] * H_raw[k]);
+    if (K_raw != nullptr) r.drag += f * (n_real[k] * K_raw[k]);
+    if (H_raw != nullptr) r.heat += f * (n_real[k] * H_raw[k]);
     r.mass += f * mass[k];
     r.heat_capacity += f * mass[k] * c_p;
   });
@@ -45,7 +52,8 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
   const int nx = c + 1;
   // Rows one at a time: the cells holding parcels are mostly in the layer's few rows at the
   // bottom, which a static split gave to one thread. Every cell on its own.
-#pragma omp parallel for schedule(dynamic, 1) if (static_cast<std::size_t>(j1) * nx >= kParallelMinimum)
+#pragma omp parallel for schedule(dynamic, \
+                                  1) if (static_cast <std::size_t>(j1) * nx >= kParallelMinimum)
   for (int j = 0; j < j1; ++j) {
     for (int i = 0; i < nx; ++i) {
       ImplicitExchangeCell& r = implicit_[grid_.index(i, j)];
@@ -92,8 +100,8 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
       drag_factor += f * r.drag;
       heat_factor += f * r.heat;
     }
-    K[k] *= drag_factor;
-    H[k] *= heat_factor;
+    if (K != nullptr) K[k] *= drag_factor;
+    if (H != nullptr) H[k] *= heat_factor;
   }
 }
 

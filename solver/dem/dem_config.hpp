@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/laws/contact.hpp"
+
 namespace dustlift {
 
 /// How the layer generator places parcels in the layer rectangle (docs/dem.md, "Layer
@@ -24,14 +26,15 @@ enum class LayerArrangement {
 };
 
 /// Scene names of the arrangements (`[particles.layer] arrangement`).
-inline constexpr std::array<std::pair<std::string_view, LayerArrangement>, 6> kLayerArrangementNames{{
-    {"jittered_lattice", LayerArrangement::JitteredLattice},
-    {"lattice", LayerArrangement::Lattice},
-    {"columnar", LayerArrangement::Columnar},
-    {"hexagonal", LayerArrangement::Hexagonal},
-    {"settled", LayerArrangement::Settled},
-    {"file", LayerArrangement::File},
-}};
+inline constexpr std::array<std::pair<std::string_view, LayerArrangement>, 6>
+    kLayerArrangementNames{{
+        {"jittered_lattice", LayerArrangement::JitteredLattice},
+        {"lattice", LayerArrangement::Lattice},
+        {"columnar", LayerArrangement::Columnar},
+        {"hexagonal", LayerArrangement::Hexagonal},
+        {"settled", LayerArrangement::Settled},
+        {"file", LayerArrangement::File},
+    }};
 
 inline std::string_view layer_arrangement_name(LayerArrangement a) {
   for (const auto& [name, value] : kLayerArrangementNames)
@@ -41,33 +44,24 @@ inline std::string_view layer_arrangement_name(LayerArrangement a) {
 
 /// One parcel placed by a layer file (arrangement = file), SI units.
 struct PlacedParcel {
-  double x = 0.0, y = 0.0;      ///< m, centre
-  double diameter = 100e-6;     ///< m, parcel diameter
-  double vx = 0.0, vy = 0.0;    ///< m/s
-  double omega = 0.0;           ///< rad/s, counter-clockwise positive
-  double temperature = 300.0;   ///< K
+  double x = 0.0, y = 0.0;     ///< m, centre
+  double diameter = 100e-6;    ///< m, parcel diameter
+  double vx = 0.0, vy = 0.0;   ///< m/s
+  double omega = 0.0;          ///< rad/s, counter-clockwise positive
+  double temperature = 300.0;  ///< K
   /// m, the real particles' diameter (optional column `particle_diameter`; 0: not given,
   /// particles.diameter). The file's distinct values are its size classes.
   double particle_diameter = 0.0;
 };
 
-/// Linear spring–dashpot contact law (Table 1), per REAL particle (§3.7).
-struct ContactParams {
-  double k_n = 5e4;      ///< N/m, normal spring
-  double k_t = 100.0;    ///< N/m, tangential spring (paper's "k_n/k_t = 0.002" read as k_t/k_n)
-  double damping = 1e-4; ///< N s/m, dashpot h, same normal and tangential (paper)
-  /// Coulomb limit |F_t| <= mu |F_n|; infinity switches the limit off (the paper's Table 1).
-  double friction = 0.5;
-};
-
 /// The rectangle the generator fills with parcels.
 struct LayerConfig {
-  double x_min = 0.0, x_max = 0.4;       ///< m
-  double y_min = -0.002, y_max = 0.0;    ///< m (surface at y = 0, floor at -2 mm)
-  double volume_fraction = 0.59;         ///< alpha_p; the parcels' areal fraction equals it
+  double x_min = 0.0, x_max = 0.4;     ///< m
+  double y_min = -0.002, y_max = 0.0;  ///< m (surface at y = 0, floor at -2 mm)
+  double volume_fraction = 0.59;       ///< alpha_p; the parcels' areal fraction equals it
   std::uint64_t seed = 1;
   LayerArrangement arrangement = LayerArrangement::JitteredLattice;
-  bool settle = false;                   ///< let the layer settle under gravity before t = 0
+  bool settle = false;  ///< let the layer settle under gravity before t = 0
   // A looser top (generated arrangements): the top `loose_top_rows` rows keep only the share
   // `loose_top_fill` of their sites, evenly spread (docs/dem.md, "A looser top"). The rows
   // below stay at volume_fraction, which real_per_parcel is derived from.
@@ -83,13 +77,13 @@ inline bool layer_settles(const LayerConfig& layer) {
 /// The region the neighbour cells cover and its walls (axis-aligned planes at its edges).
 /// Parcels may leave the region; they are then binned into its edge cells (correct, slower).
 struct DemDomain {
-  double x_min = 0.0, x_max = 0.4;       ///< m
-  double y_min = -0.002, y_max = 0.02;   ///< m
-  bool wall_bottom = true;               ///< the floor
+  double x_min = 0.0, x_max = 0.4;      ///< m
+  double y_min = -0.002, y_max = 0.02;  ///< m
+  bool wall_bottom = true;              ///< the floor
   bool wall_top = false;
   bool wall_left = false;
   bool wall_right = false;
-  bool periodic_x = false;               ///< x_min and x_max identified (no left/right walls)
+  bool periodic_x = false;  ///< x_min and x_max identified (no left/right walls)
 };
 
 /// One size class of a polydisperse layer: real particles of one diameter holding a share of
@@ -106,30 +100,30 @@ struct DemConfig {
   bool switched_off = false;
 
   // Real particles (Table 2).
-  double particle_diameter = 100e-6;     ///< m
-  double density = 980.0;                ///< kg/m^3
-  double heat_capacity = 1200.0;         ///< J/(kg K)
-  double initial_temperature = 300.0;    ///< K
+  double particle_diameter = 100e-6;   ///< m
+  double density = 980.0;              ///< kg/m^3
+  double heat_capacity = 1200.0;       ///< J/(kg K)
+  double initial_temperature = 300.0;  ///< K
   /// A polydisperse layer's size classes, smallest first (empty: one class of
   /// particle_diameter). Every class shares the parcel diameter.
   std::vector<SizeClass> size_classes;
 
   // Coarse graining (eq. 11, §4): parcel diameter n_xy d; real particles per parcel per
   // metre of depth n_i = n_xy^2 n_z. Zero means derived from the layer: alpha_p A / (N V_p).
-  double parcel_diameter = 100e-6;       ///< m
-  double real_per_parcel = 0.0;          ///< 1/m (per metre of depth); 0: derived
+  double parcel_diameter = 100e-6;  ///< m
+  double real_per_parcel = 0.0;     ///< 1/m (per metre of depth); 0: derived
 
   LayerConfig layer;
   /// arrangement = file: the parcels, in file order. Parcel i holds
   /// real_per_parcel (D_i / parcel_diameter)^2 real particles (eq. 11, n_xy^2 n_z).
   std::vector<PlacedParcel> layer_parcels;
-  ContactParams contact;                 ///< parcel–parcel
-  ContactParams wall_contact;            ///< parcel–wall (defaults to `contact`)
+  ContactParams contact;       ///< parcel–parcel
+  ContactParams wall_contact;  ///< parcel–wall (defaults to `contact`)
   DemDomain domain;
 
-  double courant = 0.1;                  ///< nu_DEM of eq. (18): dt = nu sqrt(m / max(k_n, k_t))
+  double courant = 0.1;                     ///< nu_DEM of eq. (18): dt = nu sqrt(m / max(k_n, k_t))
   double gravity_x = 0.0, gravity_y = 0.0;  ///< m/s^2; the paper has no gravity (eq. 5)
-  double skin = 0.1;                     ///< neighbour-list skin, in parcel diameters
+  double skin = 0.1;                        ///< neighbour-list skin, in parcel diameters
   /// A fast parcel's skin covers this many sub-steps at its speed (at least skin / 2), so
   /// the few fast parcels do not force frequent rebuilds of every parcel's list.
   double fast_skin_substeps = 50.0;

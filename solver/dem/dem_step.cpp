@@ -1,16 +1,9 @@
 // One DEM step: gather contact forces (Table 1), then symplectic Euler (paper Sect. 2.3).
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <utility>
 
-#include "solver/coupling/models/added_mass.hpp"
-#include "solver/coupling/models/drag.hpp"
-#include "solver/coupling/models/heat_transfer.hpp"
-#include "solver/coupling/models/magnus.hpp"
-#include "solver/coupling/models/rotation_torque.hpp"
-#include "solver/dem/contact_law.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/laws/contact.hpp"
 
 namespace dustlift {
 
@@ -222,234 +215,20 @@ double integrate_plain(double* __restrict px, double* __restrict py, double* __r
   return max_d2;
 }
 
-/// Arrays of the forced integration (ParcelSystem columns, resolved for one sub-step).
-struct ForcedArrays {
-  double *x, *y, *vx, *vy, *omega, *temperature;
-  const double *inv_m, *inv_I, *contact_fx, *contact_fy, *contact_torque, *x_build, *y_build,
-      *inv_skin2;
-  const double *gas_u, *gas_v, *gas_rotation, *gas_T, *K, *M, *kappa, *H, *pressure_fx,
-      *pressure_fy;
-  double *impulse_x, *impulse_y, *work, *heat;
-  double *drag_fx, *drag_fy, *magnus_fx, *magnus_fy, *fluid_torque, *heat_rate, *relative_rotation;
-  const double *added_mass, *added_mass_gas_x, *added_mass_gas_y,
-      *inv_total_mass;  ///< null when off
-  double *added_mass_fx, *added_mass_fy;
-};
-
-/// Symplectic Euler under contacts and the frozen-gas forcing (GasForcing): each effect's
-/// sub-step law is its coupling model's (solver/coupling/models/), and the effects that are
-/// off are compiled out. Store: write the force parts for the observers.
-template <bool Drag, bool Magnus, bool Pressure, bool AddedMass, bool Torque, bool Heat, bool Store>
-double integrate_forced_kernel(const ForcedArrays& a, std::size_t n, double dt, double gx,
-                               double gy, double inv_c) {
-  // Local restrict copies (through the struct the compiler would assume aliasing).
-  double* __restrict px = a.x;
-  double* __restrict py = a.y;
-  double* __restrict pvx = a.vx;
-  double* __restrict pvy = a.vy;
-  double* __restrict pw = a.omega;
-  double* __restrict pT = a.temperature;
-  const double* __restrict im = a.inv_m;
-  const double* __restrict ii = a.inv_I;
-  const double* __restrict cfx = a.contact_fx;
-  const double* __restrict cfy = a.contact_fy;
-  const double* __restrict ctq = a.contact_torque;
-  const double* __restrict xb = a.x_build;
-  const double* __restrict yb = a.y_build;
-  const double* __restrict is2 = a.inv_skin2;
-  const double* __restrict gu = a.gas_u;
-  const double* __restrict gv = a.gas_v;
-  const double* __restrict grot = a.gas_rotation;
-  const double* __restrict gT = a.gas_T;
-  const double* __restrict K = a.K;
-  const double* __restrict M = a.M;
-  const double* __restrict kap = a.kappa;
-  const double* __restrict H = a.H;
-  const double* __restrict pfx = a.pressure_fx;
-  const double* __restrict pfy = a.pressure_fy;
-  double* __restrict jx = a.impulse_x;
-  double* __restrict jy = a.impulse_y;
-  double* __restrict work = a.work;
-  double* __restrict heat = a.heat;
-  double* __restrict out_dfx = a.drag_fx;
-  double* __restrict out_dfy = a.drag_fy;
-  double* __restrict out_mfx = a.magnus_fx;
-  double* __restrict out_mfy = a.magnus_fy;
-  double* __restrict out_tq = a.fluid_torque;
-  double* __restrict out_q = a.heat_rate;
-  double* __restrict out_wr = a.relative_rotation;
-  const double* __restrict madd = a.added_mass;
-  const double* __restrict amgx = a.added_mass_gas_x;
-  const double* __restrict amgy = a.added_mass_gas_y;
-  const double* __restrict imt = a.inv_total_mass;
-  double* __restrict out_amx = a.added_mass_fx;
-  double* __restrict out_amy = a.added_mass_fy;
-  double max_d2 = 0.0;
-#pragma omp parallel for simd schedule(static) reduction(max : max_d2) if (n >= kParallelMinimum)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double vx0 = pvx[i], vy0 = pvy[i], w0 = pw[i];
-    const double urx = gu[i] - vx0, ury = gv[i] - vy0;
-    const double wrel = grot[i] - w0;
-    double dfx = 0.0, dfy = 0.0, mfx = 0.0, mfy = 0.0;
-    if constexpr (Drag) {
-      const Vec2 f = DragModel::force(K[i], {urx, ury});
-      dfx = f.x;
-      dfy = f.y;
-    }
-    if constexpr (Magnus) {
-      const Vec2 f = MagnusModel::force(M[i], wrel, {urx, ury});
-      mfx = f.x;
-      mfy = f.y;
-    }
-    const double ex = dfx + mfx, ey = dfy + mfy;  // exchanged with the gas (eq. 13)
-    double fx = ex, fy = ey;
-    if constexpr (Pressure) {
-      fx += pfx[i];
-      fy += pfy[i];
-    }
-    double vxn, vyn;
-    double amx = 0.0, amy = 0.0;  // the added-mass force, exchanged with the gas
-    if constexpr (AddedMass) {
-      // (m + m_a) dv/dt = F + F_g + m g (AddedMassModel).
-      const Vec2 gas_part{amgx[i], amgy[i]};
-      const Vec2 acc = AddedMassModel::acceleration({cfx[i] + fx, cfy[i] + fy}, gas_part, imt[i]);
-      const double weight_share = imt[i] / im[i];  // m / (m + m_a)
-      const Vec2 a_total{acc.x + gx * weight_share, acc.y + gy * weight_share};
-      const Vec2 f_am = AddedMassModel::force(gas_part, madd[i], a_total);
-      amx = f_am.x;
-      amy = f_am.y;
-      vxn = vx0 + dt * a_total.x;
-      vyn = vy0 + dt * a_total.y;
-    } else {
-      vxn = vx0 + dt * ((cfx[i] + fx) * im[i] + gx);
-      vyn = vy0 + dt * ((cfy[i] + fy) * im[i] + gy);
-    }
-    pvx[i] = vxn;
-    pvy[i] = vyn;
-    if constexpr (AddedMass) {
-      const double jxs = ex + amx, jys = ey + amy;
-      jx[i] += jxs * dt;
-      jy[i] += jys * dt;
-      work[i] += (jxs * 0.5 * (vx0 + vxn) + jys * 0.5 * (vy0 + vyn)) * dt;
-    } else if constexpr (Drag || Magnus) {
-      jx[i] += ex * dt;
-      jy[i] += ey * dt;
-      work[i] += (ex * 0.5 * (vx0 + vxn) + ey * 0.5 * (vy0 + vyn)) * dt;
-    }
-    double tq = ctq[i];
-    double fluid_tq = 0.0;
-    if constexpr (Torque) {
-      fluid_tq = RotationTorqueModel::torque(kap[i], wrel);
-      tq += fluid_tq;
-    }
-    pw[i] = w0 + dt * tq * ii[i];
-    double q = 0.0;
-    if constexpr (Heat) {
-      q = HeatTransferModel::heat_flow(H[i], gT[i], pT[i]);
-      pT[i] += dt * q * im[i] * inv_c;  // eq. (7)
-      heat[i] += q * dt;
-    }
-    const double xn = px[i] + dt * vxn, yn = py[i] + dt * vyn;
-    px[i] = xn;
-    py[i] = yn;
-    if constexpr (Store) {
-      out_dfx[i] = dfx;
-      out_dfy[i] = dfy;
-      out_mfx[i] = mfx;
-      out_mfy[i] = mfy;
-      out_tq[i] = fluid_tq;
-      out_q[i] = q;
-      out_wr[i] = wrel;
-      if constexpr (AddedMass) {
-        out_amx[i] = amx;
-        out_amy[i] = amy;
-      }
-    }
-    const double ddx = xn - xb[i], ddy = yn - yb[i];
-    max_d2 = std::max(max_d2, (ddx * ddx + ddy * ddy) * is2[i]);
-  }
-  return max_d2;
-}
-
-/// Calls f.template operator()<b0, b1, ...>() with the runtime flags as template arguments.
-template <std::size_t N, class F, bool... B>
-double dispatch_flags(const std::array<bool, N>& flags, F&& f) {
-  if constexpr (sizeof...(B) == N) {
-    return f.template operator()<B...>();
-  } else {
-    return flags[sizeof...(B)] ? dispatch_flags<N, F, B..., true>(flags, std::forward<F>(f))
-                               : dispatch_flags<N, F, B..., false>(flags, std::forward<F>(f));
-  }
-}
-
 }  // namespace
 
 void ParcelSystem::integrate(double dt, bool store_parts) {
   double max_d2 = 0.0;
-  if (forcing_.any()) {
-    integrate_forced(dt, store_parts);
-    return;
+  if (forcing_) {
+    max_d2 = forcing_->substep(*this, stepped_count(), dt, store_parts);
+  } else {
+    max_d2 =
+        integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(),
+                        inv_mass_real.data(), inv_inertia_real.data(), contact_fx.data(),
+                        contact_fy.data(), contact_torque.data(), x_build.data(), y_build.data(),
+                        inv_skin2.data(), stepped_count(), dt, cfg_.gravity_x, cfg_.gravity_y);
   }
-  max_d2 = integrate_plain(x.data(), y.data(), vx.data(), vy.data(), omega.data(),
-                           inv_mass_real.data(), inv_inertia_real.data(), contact_fx.data(),
-                           contact_fy.data(), contact_torque.data(), x_build.data(), y_build.data(),
-                           inv_skin2.data(), stepped_count(), dt, cfg_.gravity_x, cfg_.gravity_y);
   // A parcel moved more than its skin: a pair may now be closer than the list knows.
-  if (max_d2 > 1.0) needs_rebuild_ = true;
-}
-
-void ParcelSystem::integrate_forced(double dt, bool store_parts) {
-  const GasForcing& f = forcing_;
-  auto col = [this](ParcelColumn c) { return column(c).data(); };
-  const ForcedArrays a{x.data(),
-                       y.data(),
-                       vx.data(),
-                       vy.data(),
-                       omega.data(),
-                       temperature.data(),
-                       inv_mass_real.data(),
-                       inv_inertia_real.data(),
-                       contact_fx.data(),
-                       contact_fy.data(),
-                       contact_torque.data(),
-                       x_build.data(),
-                       y_build.data(),
-                       inv_skin2.data(),
-                       col(f.gas_u),
-                       col(f.gas_v),
-                       col(f.gas_rotation),
-                       col(f.gas_temperature),
-                       col(f.drag_coefficient),
-                       col(f.magnus_coefficient),
-                       col(f.torque_coefficient),
-                       col(f.heat_coefficient),
-                       pressure_fx.data(),
-                       pressure_fy.data(),
-                       col(f.impulse_x),
-                       col(f.impulse_y),
-                       col(f.work),
-                       col(f.heat_in),
-                       drag_fx.data(),
-                       drag_fy.data(),
-                       magnus_fx.data(),
-                       magnus_fy.data(),
-                       fluid_torque.data(),
-                       heat_rate.data(),
-                       col(f.relative_rotation),
-                       f.added_mass ? col(f.added_mass_coefficient) : nullptr,
-                       f.added_mass ? col(f.added_mass_gas_x) : nullptr,
-                       f.added_mass ? col(f.added_mass_gas_y) : nullptr,
-                       f.added_mass ? col(f.inv_total_mass) : nullptr,
-                       f.added_mass ? col(f.added_mass_fx) : nullptr,
-                       f.added_mass ? col(f.added_mass_fy) : nullptr};
-  const std::size_t n = stepped_count();
-  const double gx = cfg_.gravity_x, gy = cfg_.gravity_y, inv_c = 1.0 / cfg_.heat_capacity;
-  const std::array<bool, 7> flags{f.drag,   f.magnus, f.pressure, f.added_mass,
-                                  f.torque, f.heat,   store_parts};
-  const double max_d2 =
-      dispatch_flags(flags, [&]<bool D, bool M, bool P, bool A, bool T, bool H, bool S>() {
-        return integrate_forced_kernel<D, M, P, A, T, H, S>(a, n, dt, gx, gy, inv_c);
-      });
   if (max_d2 > 1.0) needs_rebuild_ = true;
 }
 

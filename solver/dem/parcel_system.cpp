@@ -21,25 +21,24 @@ ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
   skin_ = cfg_.skin * cfg_.parcel_diameter;
 }
 
-void ParcelSystem::set_gas_forcing(const GasForcing& f) {
-  for (ParcelColumn c : {f.gas_u, f.gas_v, f.gas_rotation, f.gas_temperature, f.drag_coefficient,
-                         f.magnus_coefficient, f.torque_coefficient, f.heat_coefficient,
-                         f.impulse_x, f.impulse_y, f.work, f.heat_in, f.relative_rotation}) {
-    if (!c.valid() || c.index >= attached_count()) {
-      throw std::invalid_argument(
-          "ParcelSystem::set_gas_forcing: a forcing column is not attached");
-    }
-  }
-  if (f.added_mass) {
-    for (ParcelColumn c : {f.added_mass_coefficient, f.added_mass_gas_x, f.added_mass_gas_y,
-                           f.inv_total_mass, f.added_mass_fx, f.added_mass_fy}) {
-      if (!c.valid() || c.index >= attached_count()) {
-        throw std::invalid_argument(
-            "ParcelSystem::set_gas_forcing: an added-mass column is not attached");
-      }
-    }
-  }
-  forcing_ = f;
+EulerArrays ParcelSystem::euler_arrays() {
+  return EulerArrays{x.data(),
+                     y.data(),
+                     vx.data(),
+                     vy.data(),
+                     omega.data(),
+                     temperature.data(),
+                     inv_mass_real.data(),
+                     inv_inertia_real.data(),
+                     contact_fx.data(),
+                     contact_fy.data(),
+                     contact_torque.data(),
+                     x_build.data(),
+                     y_build.data(),
+                     inv_skin2.data(),
+                     cfg_.gravity_x,
+                     cfg_.gravity_y,
+                     1.0 / cfg_.heat_capacity};
 }
 
 void ParcelSystem::reserve(std::size_t n) {

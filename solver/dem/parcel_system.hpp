@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,34 +25,12 @@
 #include "solver/core/parallel_minimum.hpp"
 #include "solver/core/phase_timer.hpp"
 #include "solver/dem/dem_config.hpp"
+#include "solver/dem/forced_euler.hpp"
+#include "solver/dem/parcel_forcing.hpp"
 #include "solver/dem/parcel_ranks.hpp"
 #include "solver/dem/parcel_table.hpp"
 
 namespace dustlift {
-
-/// Sub-step gas forcing of the parcels (frozen gas over one CFD step), per REAL particle:
-///   F = K (u_g - v) + M (Omega_g - w) z x (u_g - v) + F_p,   M_z = kappa (Omega_g - w),
-///   Q = H (T_g - T),
-/// with the gas values u_g, Omega_g (half the vorticity), T_g and the coefficients K, M,
-/// kappa, H (columns the coupling fills once per CFD step; each law is its model's,
-/// solver/coupling/models/) and F_p the pressure_fx/fy columns. Only the effects the
-/// coupling's models write are evaluated. The exchange with the gas, drag + Magnus impulse, its
-/// work (with the symplectic-Euler mean velocity, exactly the kinetic energy it gives) and Q dt, is
-/// summed per parcel over the sub-steps into the accumulator columns.
-struct GasForcing {
-  bool drag = false, magnus = false, pressure = false, torque = false, heat = false;
-  ParcelColumn gas_u, gas_v, gas_rotation, gas_temperature;
-  ParcelColumn drag_coefficient, magnus_coefficient, torque_coefficient, heat_coefficient;
-  ParcelColumn impulse_x, impulse_y, work, heat_in;  ///< accumulators (zeroed by the coupling)
-  ParcelColumn relative_rotation;                    ///< Omega_g - w of the last sub-step
-  /// The added-mass force (AddedMassModel): with it each sub-step solves
-  /// (m + m_a) dv/dt = F + F_g (m_a, F_g and 1/(m + m_a) columns the coupling fills), and the
-  /// force F_g - m_a dv/dt is exchanged like drag and stored in the force_added_mass columns.
-  bool added_mass = false;
-  ParcelColumn added_mass_coefficient, added_mass_gas_x, added_mass_gas_y, inv_total_mass;
-  ParcelColumn added_mass_fx, added_mass_fy;  ///< force parts (per real particle, N)
-  bool any() const { return drag || magnus || pressure || torque || heat || added_mass; }
-};
 
 /// One parcel to add (before the first step).
 struct ParcelInit {
@@ -89,7 +68,7 @@ class ParcelSystem : public ParcelTable {
   double stable_time_step() const;
 
   /// One symplectic Euler step (v^{n+1} = v^n + dt F^n/m, x^{n+1} = x^n + dt v^{n+1}) under
-  /// the contacts (recomputed), gravity and, when set, the gas forcing (set_gas_forcing).
+  /// the contacts (recomputed), gravity and, when set, the forcing (set_forcing).
   void step(double dt);
 
   /// Called before every sub-step with (system, sub-step time) so the coupling can fill
@@ -138,8 +117,11 @@ class ParcelSystem : public ParcelTable {
     if (needs_rebuild_) rebuild_neighbours();
   }
 
-  /// Sets the sub-step gas forcing (the coupling, once). Its columns must be attached here.
-  void set_gas_forcing(const GasForcing& f);
+  /// Sets what moves the parcels besides contacts and gravity (the coupling's gas-particle
+  /// effects, once; shared by copies of this system). Its columns must be attached here.
+  void set_forcing(std::shared_ptr<const ParcelForcing> f) { forcing_ = std::move(f); }
+  /// The columns a forced sub-step integrates (forced_euler.hpp), without exchange sums.
+  EulerArrays euler_arrays();
   /// Marks the next advance() to store the force parts, relative rotation and heat rate of
   /// its last sub-step in their columns (the observers' view); other sub-steps skip those
   /// stores. Default: always stored.
@@ -222,7 +204,6 @@ class ParcelSystem : public ParcelTable {
   bool mixed_counts_ = false;  ///< some parcels' real counts differ (valid when counts_known_)
   bool counts_known_ = false;  ///< cleared when parcels are added, restored or moved
   void integrate(double dt, bool store_parts);
-  void integrate_forced(double dt, bool store_parts);
   double wall_position(int w) const;
 
   DemConfig cfg_;
@@ -235,7 +216,7 @@ class ParcelSystem : public ParcelTable {
   long long data_permutations_ = 0;
   long long parcel_substeps_ = 0;
 
-  GasForcing forcing_;
+  std::shared_ptr<const ParcelForcing> forcing_;
   bool parts_last_only_ = false;
   ParcelColumn stepped_;
   std::size_t stepped_count_ = static_cast<std::size_t>(-1);

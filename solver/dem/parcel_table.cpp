@@ -59,14 +59,6 @@ const std::vector<ParcelTable::BuiltinColumn>& ParcelTable::builtin_columns() {
       state("contact_fx", "N", &T::contact_fx, "force_contact", 0, ForcePart::Contact),
       state("contact_fy", "N", &T::contact_fy, "force_contact", 1, ForcePart::Contact),
       state("contact_torque", "N m", &T::contact_torque),
-      state("drag_fx", "N", &T::drag_fx, "force_drag", 0, ForcePart::Drag),
-      state("drag_fy", "N", &T::drag_fy, "force_drag", 1, ForcePart::Drag),
-      state("magnus_fx", "N", &T::magnus_fx, "force_magnus", 0, ForcePart::Magnus),
-      state("magnus_fy", "N", &T::magnus_fy, "force_magnus", 1, ForcePart::Magnus),
-      state("pressure_fx", "N", &T::pressure_fx, "force_pressure", 0, ForcePart::Pressure),
-      state("pressure_fy", "N", &T::pressure_fy, "force_pressure", 1, ForcePart::Pressure),
-      state("fluid_torque", "N m", &T::fluid_torque),
-      state("heat_rate", "W", &T::heat_rate),
       bookkeeping("id", "1", F::Carried, &T::id, "parcels/id"),
       bookkeeping("inv_mass_real", "1/kg", F::Carried, &T::inv_mass_real, "dem/inv_mass_real"),
       bookkeeping("inv_inertia_real", "1/(kg m^2)", F::Carried, &T::inv_inertia_real,
@@ -89,6 +81,20 @@ ParcelColumn ParcelTable::attach_column(ParcelColumnSpec spec) {
   attached_.emplace_back(size(), 0.0);
   attached_.back().reserve(x.capacity());
   return ParcelColumn{attached_.size() - 1};
+}
+
+ParcelColumn ParcelTable::find_column(std::string_view name) const {
+  for (std::size_t k = 0; k < attached_specs_.size(); ++k)
+    if (attached_specs_[k].name == name) return ParcelColumn{k};
+  return {};
+}
+
+ParcelColumn ParcelTable::find_part(ForcePart part, int component) const {
+  for (std::size_t k = 0; k < attached_specs_.size(); ++k) {
+    const ParcelColumnSpec& s = attached_specs_[k];
+    if (s.part == part && s.component == component) return ParcelColumn{k};
+  }
+  return {};
 }
 
 void ParcelTable::append_zero_row() {

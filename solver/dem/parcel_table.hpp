@@ -12,19 +12,18 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <variant>
 #include <vector>
+
+#include "solver/laws/force_part.hpp"
 
 namespace dustlift {
 
 /// Wall slots of the per-parcel wall history, in this order.
 enum class Wall : int { Bottom = 0, Top = 1, Left = 2, Right = 3, Count = 4 };
 inline constexpr int kWallCount = static_cast<int>(Wall::Count);
-
-/// The force, torque and heat parts the table stores per real particle. Contact is always
-/// computed; the others exist when a coupling model writes them.
-enum class ForcePart { None, Contact, Drag, Magnus, Pressure, FluidTorque, Heat, AddedMass };
 
 /// How a column follows the parcels.
 enum class ColumnFlow {
@@ -70,13 +69,13 @@ struct ParcelColumn {
 class ParcelTable {
  public:
   // ---- Parcel state and properties ----
-  std::vector<std::int32_t> id;              ///< stable parcel id (order of adding)
-  std::vector<double> x, y;                  ///< m (x unwrapped between rebuilds when periodic)
-  std::vector<double> vx, vy;                ///< m/s
-  std::vector<double> omega;                 ///< rad/s, counter-clockwise positive
-  std::vector<double> temperature;           ///< K
-  std::vector<double> diameter;              ///< m, parcel
-  std::vector<double> real_diameter;         ///< m, the real particles the parcel stands for
+  std::vector<std::int32_t> id;       ///< stable parcel id (order of adding)
+  std::vector<double> x, y;           ///< m (x unwrapped between rebuilds when periodic)
+  std::vector<double> vx, vy;         ///< m/s
+  std::vector<double> omega;          ///< rad/s, counter-clockwise positive
+  std::vector<double> temperature;    ///< K
+  std::vector<double> diameter;       ///< m, parcel
+  std::vector<double> real_diameter;  ///< m, the real particles the parcel stands for
   /// The layer's size class the parcel belongs to (0 for a monodisperse layer). Held as a
   /// double because every written parcel array is one; always a small whole number.
   std::vector<double> size_class;
@@ -87,13 +86,9 @@ class ParcelTable {
   std::vector<double> x_initial, y_initial;  ///< m, where the parcel started (in-situ filters)
   std::vector<double> inv_mass_real, inv_inertia_real;  ///< 1/m and 1/I of one real particle
 
-  // ---- Force parts per REAL particle (N, N m, W); observers read, coupling writes ----
-  std::vector<double> contact_fx, contact_fy, contact_torque;  ///< recomputed every step
-  std::vector<double> drag_fx, drag_fy;
-  std::vector<double> magnus_fx, magnus_fy;
-  std::vector<double> pressure_fx, pressure_fy;
-  std::vector<double> fluid_torque;  ///< M_rotation (Table 1)
-  std::vector<double> heat_rate;     ///< Q_i, W (eq. 7)
+  // ---- Contact forces per REAL particle (N, N m), recomputed every sub-step. The parts of
+  // other effects (drag, lift, ...) are columns their effect attaches (ForcePart tags them).
+  std::vector<double> contact_fx, contact_fy, contact_torque;
 
   // ---- Contact bookkeeping ----
   /// Tangential elongation of each parcel against each wall: wall_delta[i * kWallCount + w].
@@ -159,6 +154,11 @@ class ParcelTable {
   ParcelColumn attach_column(ParcelColumnSpec spec);
   std::vector<double>& column(ParcelColumn c) { return attached_[c.index]; }
   const std::vector<double>& column(ParcelColumn c) const { return attached_[c.index]; }
+  /// The attached column of that name (an invalid handle when there is none).
+  ParcelColumn find_column(std::string_view name) const;
+  /// The attached column tagged with force part `part` and component `component` (an invalid
+  /// handle when no effect computes that part).
+  ParcelColumn find_part(ForcePart part, int component) const;
   /// The attached columns, in the order attached.
   std::size_t attached_count() const { return attached_.size(); }
   const ParcelColumnSpec& attached_spec(std::size_t k) const { return attached_specs_[k]; }

@@ -2,19 +2,19 @@
 // density, contact stiffness, damping or restitution) has no defaults; the numerical settings
 // default to the paper's (Table 2); choices where the paper is silent or garbled are explained
 // in docs/dem.md.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/size_distribution.hpp"
+#include "solver/laws/contact.hpp"
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
-
-#include <fmt/format.h>
 
 namespace dustlift::scene_detail {
 namespace {
@@ -22,14 +22,16 @@ namespace {
 /// Where a material property left out of a scene comes from: not a silent default but the
 /// paper's dust, named so (with its value) in the resolved scene and the key reference.
 std::string paper_material(double value) {
-  return fmt::format("the paper's 100 um dust, {:g} (Tables 1, 2): not given, set it for your dust", value);
+  return fmt::format("the paper's 100 um dust, {:g} (Tables 1, 2): not given, set it for your dust",
+                     value);
 }
 
 /// [particles.contact], or [particles.wall_contact] whose defaults are the contact's
 /// (`from` names it: they are derived, so a resolved scene with another contact law follows it).
 /// The dashpot is given (`damping`) or follows from a normal restitution coefficient for a
 /// pair of particles of reduced mass `m_eff` (at a wall: a particle of mass `m_eff`).
-ContactParams parse_contact(TableReader t, const ContactParams& fallback, double m_eff, const char* from = nullptr) {
+ContactParams parse_contact(TableReader t, const ContactParams& fallback, double m_eff,
+                            const char* from = nullptr) {
   t.expect_keys({"k_n", "k_t", "damping", "restitution", "coulomb", "friction"});
   // The parcel-parcel law's constants are the paper's 100 um dust's unless given: they are
   // noted as taken from it (resolved scene, info), never silent.
@@ -39,31 +41,40 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
   };
   ContactParams c;
   // The parcel-parcel law's stiffness is the dust's (required); k_t follows the paper's ratio.
-  c.k_n = from != nullptr ? number("k_n", fallback.k_n, Range::positive()) : t.required_number("k_n", Range::positive());
-  c.k_t = from != nullptr ? number("k_t", fallback.k_t, Range::non_negative())
-                          : t.derived_number("k_t", 0.002 * c.k_n, t.full_key("k_n") + " (k_t = 0.002 k_n, the paper's ratio)",
-                                             Range::non_negative());
+  c.k_n = from != nullptr ? number("k_n", fallback.k_n, Range::positive())
+                          : t.required_number("k_n", Range::positive());
+  c.k_t = from != nullptr
+              ? number("k_t", fallback.k_t, Range::non_negative())
+              : t.derived_number("k_t", 0.002 * c.k_n,
+                                 t.full_key("k_n") + " (k_t = 0.002 k_n, the paper's ratio)",
+                                 Range::non_negative());
   if (t.has("restitution")) {
     // The linear law's e_n = exp(-pi zeta / sqrt(1 - zeta^2)) inverted for the dashpot.
     if (t.has("damping")) t.fail("restitution", "give either damping or restitution, not both");
     const double e = t.required_number("restitution", Range::open_closed(0.0, 1.0));
-    c.damping = t.derived_number("damping", damping_for_restitution(m_eff, c.k_n, e),
-                                 t.full_key("restitution") + ", k_n and the particles' mass (" +
-                                     (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") + ")",
-                                 Range::non_negative());
+    c.damping = t.derived_number(
+        "damping", damping_for_restitution(m_eff, c.k_n, e),
+        t.full_key("restitution") + ", k_n and the particles' mass (" +
+            (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") +
+            ")",
+        Range::non_negative());
   } else if (from != nullptr) {
     c.damping = number("damping", fallback.damping, Range::non_negative());
   } else {
     if (!t.has("damping"))
-      t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the damping then follows for "
+      t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the "
+                                    "damping then follows for "
                                     "two particles of particles.diameter, reduced mass {:.4g} kg)",
                                     m_eff));
     c.damping = t.required_number("damping", Range::non_negative());
   }
-  const bool coulomb = from != nullptr ? t.derived_boolean("coulomb", std::isfinite(fallback.friction), std::string(from) + ".coulomb")
-                                       : t.boolean("coulomb", std::isfinite(fallback.friction));
+  const bool coulomb = from != nullptr
+                           ? t.derived_boolean("coulomb", std::isfinite(fallback.friction),
+                                               std::string(from) + ".coulomb")
+                           : t.boolean("coulomb", std::isfinite(fallback.friction));
   if (coulomb) {
-    c.friction = number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5, Range::non_negative());
+    c.friction = number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5,
+                        Range::non_negative());
   } else {
     if (t.has("friction")) t.fail("friction", "only used with coulomb = true");
     c.friction = std::numeric_limits<double>::infinity();
@@ -84,7 +95,8 @@ LayerArrangement parse_arrangement(TableReader& lt) {
 
 }  // namespace
 
-void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary) {
+void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
+                     const BoundaryConfig& boundary) {
   t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature",
                  "parcel_diameter", "layer", "real_per_parcel", "contact", "wall_contact",
                  "courant", "skin", "fast_skin_substeps", "gravity", "g", "size_distribution"});
@@ -167,13 +179,17 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
         lt.fail(key, "not used with arrangement = \"file\" (thin the file's rows instead)");
     }
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
-    const ParcelFileLimits limits{grid.x.start, grid.x.end, grid.y.start, grid.y.end, dem.particle_diameter,
-                                  min_cell_width(grid) * (1.0 + kCellTolerance)};
-    const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter, 0.0, 0.0, 0.0, dem.initial_temperature};
+    const ParcelFileLimits limits{
+        grid.x.start,          grid.x.end,
+        grid.y.start,          grid.y.end,
+        dem.particle_diameter, min_cell_width(grid) * (1.0 + kCellTolerance)};
+    const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter,    0.0,
+                                0.0, 0.0, dem.initial_temperature};
     dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
     // Parcels of diameter parcel_diameter that hold as many real particles (n ~ D^2, eq. 11).
     double equivalent = 0.0;
-    for (const PlacedParcel& p : dem.layer_parcels) equivalent += std::pow(p.diameter / dem.parcel_diameter, 2);
+    for (const PlacedParcel& p : dem.layer_parcels)
+      equivalent += std::pow(p.diameter / dem.parcel_diameter, 2);
     if (fraction) L.volume_fraction = *fraction;
     dem.size_classes =
         file_size_classes(dem.layer_parcels, dem.particle_diameter, dem.parcel_diameter);
@@ -185,21 +201,29 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     // A size in the wrong unit (40 for 40 um) would otherwise surface as a packing error.
     const double depth = L.y_max - L.y_min, cell = min_cell_width(grid);
     if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
-      t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are in metres (40 um is 40e-6)",
+      t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are "
+                                   "in metres (40 um is 40e-6)",
                                    dem.parcel_diameter,
-                                   dem.parcel_diameter > depth ? "the layer's depth" : "the smallest grid cell",
+                                   dem.parcel_diameter > depth ? "the layer's depth"
+                                                               : "the smallest grid cell",
                                    dem.parcel_diameter > depth ? depth : cell));
     }
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
-    L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+    L.seed = static_cast<std::uint64_t>(
+        lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
     // Before the lattice is planned (it is sized by the parcel count): the parcels must fit
     // the machine.
     const double parcels = L.volume_fraction * area / disc_area(dem.parcel_diameter);
     const std::string shortfall = memory_shortfall(0.0, parcels);
     if (!shortfall.empty() || parcels > static_cast<double>(kMaxParcels)) {
-      t.fail(size_key, fmt::format("{:.9g} m parcels fill the layer with {:.3g} parcels: the run {}", dem.parcel_diameter,
-                                   parcels, shortfall.empty() ? fmt::format("would need more than the {:.3g} parcel ids", static_cast<double>(kMaxParcels)) : shortfall));
+      t.fail(
+          size_key,
+          fmt::format("{:.9g} m parcels fill the layer with {:.3g} parcels: the run {}",
+                      dem.parcel_diameter, parcels,
+                      shortfall.empty() ? fmt::format("would need more than the {:.3g} parcel ids",
+                                                      static_cast<double>(kMaxParcels))
+                                        : shortfall));
     }
     LayerLattice plan;
     try {
@@ -249,10 +273,12 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                          Range::positive());
   }
 
-  // Restitution is of two particles of particles.diameter (reduced mass m/2), or of one at a wall (m).
+  // Restitution is of two particles of particles.diameter (reduced mass m/2), or of one at a wall
+  // (m).
   const double particle_mass = dem.density * sphere_volume(dem.particle_diameter);
   dem.contact = parse_contact(t.table("contact", true), dem.contact, 0.5 * particle_mass);
-  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
+  dem.wall_contact =
+      parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
 
   // The parcels live in the gas domain: its edges are walls for them, except where the
   // gas is periodic (then the parcels are periodic too). Parcels never leave the grid.
@@ -265,7 +291,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   D.wall_left = D.wall_right = !D.periodic_x;
   D.wall_bottom = D.wall_top = boundary.bottom != BoundaryKind::Periodic;
   if (boundary.bottom == BoundaryKind::Periodic) {
-    t.fail("enabled", "parcels need walls at the bottom and top of the grid (boundary.bottom/top periodic)");
+    t.fail("enabled",
+           "parcels need walls at the bottom and top of the grid (boundary.bottom/top periodic)");
   }
   // Which edge leaves the grid, against the grid's bounds.
   const struct {
@@ -279,25 +306,32 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                {"y_max", L.y_max, D.y_max, L.y_max > D.y_max, "grid.y.end"}};
   for (const auto& e : edges) {
     if (e.outside)
-      lt.fail(e.key, fmt::format("{:.9g} m lies outside the grid ({} = {:.9g} m): the layer rectangle must lie "
-                                 "inside x in [{:.9g}, {:.9g}] m, y in [{:.9g}, {:.9g}] m",
-                                 e.value, e.side, e.bound, D.x_min, D.x_max, D.y_min, D.y_max));
+      lt.fail(e.key,
+              fmt::format(
+                  "{:.9g} m lies outside the grid ({} = {:.9g} m): the layer rectangle must lie "
+                  "inside x in [{:.9g}, {:.9g}] m, y in [{:.9g}, {:.9g}] m",
+                  e.value, e.side, e.bound, D.x_min, D.x_max, D.y_min, D.y_max));
   }
 
   dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));
   if (dem.courant < kMinCourant) {
-    t.fail("courant", fmt::format("{:g} is below {:g}: the DEM would take more than {:g} times the sub-steps of "
-                                  "the default {:g} (eq. 18), which buys no accuracy", dem.courant, kMinCourant,
-                                  DemConfig{}.courant / kMinCourant, DemConfig{}.courant));
+    t.fail("courant",
+           fmt::format(
+               "{:g} is below {:g}: the DEM would take more than {:g} times the sub-steps of "
+               "the default {:g} (eq. 18), which buys no accuracy",
+               dem.courant, kMinCourant, DemConfig{}.courant / kMinCourant, DemConfig{}.courant));
   }
   dem.skin = t.number("skin", dem.skin, Range::open_closed(0.0, 1.0));
-  dem.fast_skin_substeps = t.number("fast_skin_substeps", dem.fast_skin_substeps, Range::non_negative());
+  dem.fast_skin_substeps =
+      t.number("fast_skin_substeps", dem.fast_skin_substeps, Range::non_negative());
   // Gravity on the parcels: true (g along -y) or a vector [g_x, g_y] in m/s^2 (a vertical
   // tube along x has it along -x).
   if (t.is_array("gravity")) {
-    if (t.has("g")) t.fail("g", "only used with gravity = true (a gravity vector gives its own magnitude)");
+    if (t.has("g"))
+      t.fail("g", "only used with gravity = true (a gravity vector gives its own magnitude)");
     const std::vector<double> g = t.number_list("gravity", {}, Range{});
-    if (g.size() != 2) t.fail("gravity", "a gravity vector has two components, [g_x, g_y] in m/s^2");
+    if (g.size() != 2)
+      t.fail("gravity", "a gravity vector has two components, [g_x, g_y] in m/s^2");
     dem.gravity_x = g[0];
     dem.gravity_y = g[1];
   } else {

@@ -3,8 +3,8 @@
 #include <sstream>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
 #include "solver/gas/shock_relations.hpp"
+#include "solver/laws/contact.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/slab_driver.hpp"
 
@@ -85,7 +85,8 @@ std::vector<std::string> Simulation::enabled_effects() const {
   }
   s << "; spring-dashpot contacts (k_n " << d.contact.k_n << " N/m, k_t " << d.contact.k_t
     << " N/m, h " << d.contact.damping << " N s/m: restitution "
-    << contact_restitution(0.5 * d.density * sphere_volume(d.particle_diameter), d.contact.k_n, d.contact.damping)
+    << contact_restitution(0.5 * d.density * sphere_volume(d.particle_diameter), d.contact.k_n,
+                           d.contact.damping)
     << " between two particles of " << d.particle_diameter * 1e6 << " um)";
   e.push_back(s.str());
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"

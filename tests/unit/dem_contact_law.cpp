@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
+#include "solver/laws/contact.hpp"
 
 using namespace dustlift;
 

@@ -9,6 +9,7 @@
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "tests/unit/forcing_fixture.hpp"
 
 using namespace dustlift;
 
@@ -23,26 +24,6 @@ DemConfig open_space() {
 
 }  // namespace
 
-/// Attaches the gas-forcing columns to s and returns the forcing (all effects off).
-GasForcing attach_forcing(ParcelSystem& s) {
-  GasForcing f;
-  auto c = [&](const char* name) { return s.attach_column({name, "", false, false}); };
-  f.gas_u = c("gas_u");
-  f.gas_v = c("gas_v");
-  f.gas_rotation = c("gas_rotation");
-  f.gas_temperature = c("gas_T");
-  f.drag_coefficient = c("K");
-  f.magnus_coefficient = c("M");
-  f.torque_coefficient = c("kappa");
-  f.heat_coefficient = c("H");
-  f.impulse_x = c("jx");
-  f.impulse_y = c("jy");
-  f.work = c("work");
-  f.heat_in = c("heat");
-  f.relative_rotation = c("w_rel");
-  return f;
-}
-
 TEST(DemParcelSystem, AdvanceSubCyclesWithEquation18AndCallsTheHookEachSubStep) {
   ParcelSystem s(open_space());
   ParcelInit p;
@@ -52,16 +33,15 @@ TEST(DemParcelSystem, AdvanceSubCyclesWithEquation18AndCallsTheHookEachSubStep) 
   // Eq. (18): nu sqrt(m / max k) with the real-particle mass.
   EXPECT_NEAR(s.stable_time_step(), 0.1 * std::sqrt(m / 5e4), 1e-20);
   EXPECT_NEAR(s.stable_time_step(), 1.013e-8, 0.001e-8);
-  GasForcing f = attach_forcing(s);
-  f.pressure = true;
-  f.heat = true;
-  s.set_gas_forcing(f);
+  CouplingConfig c = forcing_fixture::no_effects();
+  c.pressure_force = c.heat_transfer = true;
+  forcing_fixture::Forcing f(s, c);
   const double F = 1e-9;  // N per real particle (the pressure-force columns)
-  s.pressure_fx[0] = F;
-  s.pressure_fy[0] = -2 * F;
+  forcing_fixture::column(s, "pressure_fx") = F;
+  forcing_fixture::column(s, "pressure_fy") = -2 * F;
   const double H = 1e-9, Tg = 1300.0;  // W/K and K: Q = H (T_g - T)
-  s.column(f.heat_coefficient)[0] = H;
-  s.column(f.gas_temperature)[0] = Tg;
+  forcing_fixture::column(s, "heat_coefficient") = H;
+  forcing_fixture::column(s, "gas_temperature") = Tg;
   int calls = 0;
   const double dt_cfd = 4.1e-7;  // a paper-like CFD step
   const int n = s.advance(dt_cfd, [&](ParcelSystem&, double) { ++calls; });
@@ -77,10 +57,12 @@ TEST(DemParcelSystem, AdvanceSubCyclesWithEquation18AndCallsTheHookEachSubStep) 
   EXPECT_NEAR(s.temperature[0], T_n, 1e-12 * 300.0);
   // The heat taken from the gas is what the particle gained; the pressure force is not
   // exchanged (the gas feels it through alpha grad p), so no impulse and no work.
-  EXPECT_NEAR(s.column(f.heat_in)[0], m * 1200.0 * (s.temperature[0] - 300.0), 1e-9 * m * 1200.0);
-  EXPECT_EQ(s.column(f.impulse_x)[0], 0.0);
-  EXPECT_EQ(s.column(f.work)[0], 0.0);
-  EXPECT_NEAR(s.heat_rate[0], H * (Tg - T_n) / r, 1e-9 * H * Tg) << "the last sub-step's Q";
+  EXPECT_NEAR(forcing_fixture::column(s, "heat"), m * 1200.0 * (s.temperature[0] - 300.0),
+              1e-9 * m * 1200.0);
+  EXPECT_EQ(forcing_fixture::column(s, "impulse_x"), 0.0);
+  EXPECT_EQ(forcing_fixture::column(s, "work"), 0.0);
+  EXPECT_NEAR(forcing_fixture::column(s, "heat_rate"), H * (Tg - T_n) / r, 1e-9 * H * Tg)
+      << "the last sub-step's Q";
 }
 
 TEST(DemParcelSystem, DragForcingRelaxesTheSlipAndSumsTheExchangeExactly) {
@@ -89,23 +71,24 @@ TEST(DemParcelSystem, DragForcingRelaxesTheSlipAndSumsTheExchangeExactly) {
   ParcelSystem s(open_space());
   s.add_parcel(ParcelInit{});
   const double m = 980.0 * sphere_volume(100e-6);
-  GasForcing f = attach_forcing(s);
-  f.drag = true;
-  s.set_gas_forcing(f);
+  CouplingConfig c = forcing_fixture::no_effects();
+  c.drag = true;
+  forcing_fixture::Forcing f(s, c);
   const double ug = 200.0, vg = -50.0, K = 4e-7;
-  s.column(f.gas_u)[0] = ug;
-  s.column(f.gas_v)[0] = vg;
-  s.column(f.drag_coefficient)[0] = K;
+  forcing_fixture::column(s, "gas_u") = ug;
+  forcing_fixture::column(s, "gas_v") = vg;
+  forcing_fixture::column(s, "drag_coefficient") = K;
   const double dt_cfd = 1e-6;
   const int n = s.advance(dt_cfd);
   const double r = 1.0 - K * (dt_cfd / n) / m;
   EXPECT_NEAR(s.vx[0], ug * (1.0 - std::pow(r, n)), 1e-10 * ug);
   EXPECT_NEAR(s.vy[0], vg * (1.0 - std::pow(r, n)), 1e-10 * ug);
-  EXPECT_NEAR(s.column(f.impulse_x)[0], m * s.vx[0], 1e-12 * m * ug);
-  EXPECT_NEAR(s.column(f.impulse_y)[0], m * s.vy[0], 1e-12 * m * ug);
+  EXPECT_NEAR(forcing_fixture::column(s, "impulse_x"), m * s.vx[0], 1e-12 * m * ug);
+  EXPECT_NEAR(forcing_fixture::column(s, "impulse_y"), m * s.vy[0], 1e-12 * m * ug);
   const double ke = 0.5 * m * (s.vx[0] * s.vx[0] + s.vy[0] * s.vy[0]);
-  EXPECT_NEAR(s.column(f.work)[0], ke, 1e-10 * ke);
-  EXPECT_NEAR(s.drag_fx[0], K * (ug - s.vx[0]) / r, 1e-9 * K * ug) << "the last sub-step's drag";
+  EXPECT_NEAR(forcing_fixture::column(s, "work"), ke, 1e-10 * ke);
+  EXPECT_NEAR(forcing_fixture::column(s, "drag_fx"), K * (ug - s.vx[0]) / r, 1e-9 * K * ug)
+      << "the last sub-step's drag";
 }
 
 TEST(DemParcelSystem, GravityAcceleratesEveryParcelAlike) {

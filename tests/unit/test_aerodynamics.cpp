@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "solver/coupling/models/drag.hpp"
-#include "solver/coupling/models/heat_transfer.hpp"
-#include "solver/coupling/models/magnus.hpp"
-#include "solver/coupling/models/pressure_force.hpp"
-#include "solver/coupling/models/rotation_torque.hpp"
+#include "solver/laws/drag.hpp"
+#include "solver/laws/heat_transfer.hpp"
+#include "solver/laws/magnus.hpp"
+#include "solver/laws/pressure_force.hpp"
+#include "solver/laws/rotation_torque.hpp"
 
 using namespace dustlift;
 using namespace dustlift::aero;
@@ -25,7 +25,9 @@ TEST(Drag, CliftGauvinStandardCurve) {
 
 TEST(Drag, ParmarCompressibleTableMatches) {
   // docs/coupling.md C_D(M, Re).
-  struct Point { double re, m, cd; };
+  struct Point {
+    double re, m, cd;
+  };
   const Point table[] = {
       {1, 0.0, 27.6000},   {1, 0.8, 27.0638},    {1, 1.5, 26.5968},    {10, 0.3, 4.1476},
       {10, 1.0, 4.2407},   {10, 1.75, 4.2932},   {100, 0.6, 1.1022},   {100, 0.8, 1.2177},
@@ -122,8 +124,10 @@ TEST(Torque, StokesLimitAndDennisFit) {
   const double stokes = kPi * mu * d * d * d * w_cross;
   EXPECT_NEAR(rotation_torque(1.2, mu, d, w_cross * 1.0000001, 7.93), stokes, 2e-3 * stokes);
   // Fit alone (paper): sign follows omega_rel, magnitude from C_T at Re_w.
-  const double w = 5e4, re_w = 1.2 * w * d * d / (4 * mu), ct = 6.45 / std::sqrt(re_w) + 32.1 / re_w;
-  EXPECT_NEAR(rotation_torque(1.2, mu, d, -w, 0.0), -ct * std::pow(d, 5) * 1.2 * w * w / 64.0, 1e-25);
+  const double w = 5e4, re_w = 1.2 * w * d * d / (4 * mu),
+               ct = 6.45 / std::sqrt(re_w) + 32.1 / re_w;
+  EXPECT_NEAR(rotation_torque(1.2, mu, d, -w, 0.0), -ct * std::pow(d, 5) * 1.2 * w * w / 64.0,
+              1e-25);
 }
 
 TEST(Torque, FitStaysFiniteAndContinuousAsTheRelativeRotationVanishes) {
@@ -143,8 +147,10 @@ TEST(Torque, FitStaysFiniteAndContinuousAsTheRelativeRotationVanishes) {
     EXPECT_EQ(rotation_torque(rho, mu, d, -w, 0.0), -m) << w;
   }
   const double w_switch = 1e-100 * 4.0 * mu / (rho * d * d);
-  const double below = rotation_torque(rho, mu, d, w_switch * (1 - 1e-9), 0.0) / (w_switch * (1 - 1e-9));
-  const double above = rotation_torque(rho, mu, d, w_switch * (1 + 1e-9), 0.0) / (w_switch * (1 + 1e-9));
+  const double below =
+      rotation_torque(rho, mu, d, w_switch * (1 - 1e-9), 0.0) / (w_switch * (1 - 1e-9));
+  const double above =
+      rotation_torque(rho, mu, d, w_switch * (1 + 1e-9), 0.0) / (w_switch * (1 + 1e-9));
   EXPECT_NEAR(below, above, 1e-12 * above);
 }
 
@@ -152,7 +158,8 @@ TEST(Heat, RanzMarshallPostShockExample) {
   EXPECT_NEAR(nusselt_ranz_marshall(1998.5, 0.714), 25.97, 0.01);
   EXPECT_DOUBLE_EQ(nusselt_ranz_marshall(0.0, 0.7), 2.0);
   // Q = pi d^2 h dT with h = Nu lambda / d.
-  EXPECT_NEAR(heat_flow(0.026, 2.0, 1e-4, 310.0, 300.0), kPi * 1e-8 * (2.0 * 0.026 / 1e-4) * 10.0, 1e-18);
+  EXPECT_NEAR(heat_flow(0.026, 2.0, 1e-4, 310.0, 300.0), kPi * 1e-8 * (2.0 * 0.026 / 1e-4) * 10.0,
+              1e-18);
 }
 
 TEST(Pressure, ForcePointsDownTheGradient) {

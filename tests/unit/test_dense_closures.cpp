@@ -10,10 +10,12 @@
 
 #include "insitu/parcel_fronts.hpp"
 #include "solver/coupling/coupling_config.hpp"
-#include "solver/coupling/coupling_models.hpp"
-#include "solver/coupling/models/added_mass.hpp"
-#include "solver/coupling/models/drag.hpp"
+#include "solver/coupling/effects/added_mass.hpp"
+#include "solver/coupling/effects/effect_list.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/laws/added_mass.hpp"
+#include "solver/laws/drag.hpp"
+#include "tests/unit/forcing_fixture.hpp"
 
 using namespace dustlift;
 
@@ -42,7 +44,7 @@ TEST(AddedMass, CoefficientIsParmarsMachFitTimesZubersFactor) {
 TEST(AddedMass, ModelCoefficientTimesSubstepPieceIsThePublishedForce) {
   CouplingConfig c;
   c.added_mass = true;
-  const AddedMassModel model(c);
+  AddedMassEffect model(c);
   ModelInput in;
   in.gas = GasSample{.rho = 2.07,
                      .u = 300.0,
@@ -54,8 +56,17 @@ TEST(AddedMass, ModelCoefficientTimesSubstepPieceIsThePublishedForce) {
   const double d = 115e-6, m = 2520.0 * kPi / 6.0 * d * d * d;
   in.parcel = ParcelAtSample{20.0, 0.0, 0.0, d, m};
   in.slip = 280.0;
-  SubstepCoefficients out;
-  model.coefficients(&in, &out, 1);
+  DemConfig cfg;
+  cfg.enabled = true;
+  ParcelSystem one(cfg);
+  one.add_parcel(ParcelInit{});
+  model.attach(one);
+  model.coefficients(&in, 0, 1, one);
+  struct {
+    double added_mass, inv_total_mass, added_mass_fx, added_mass_fy;
+  } out{forcing_fixture::column(one, "added_mass"), forcing_fixture::column(one, "inv_total_mass"),
+        forcing_fixture::column(one, "added_mass_gas_x"),
+        forcing_fixture::column(one, "added_mass_gas_y")};
   const double c_m =
       aero::added_mass_coefficient(280.0 / 412.0, 0.21, aero::AddedMassVolumeFraction::Zuber);
   const double vp = kPi / 6.0 * d * d * d;
@@ -68,7 +79,8 @@ TEST(AddedMass, ModelCoefficientTimesSubstepPieceIsThePublishedForce) {
   EXPECT_DOUBLE_EQ(aero::gas_acceleration_share(0.79, c_m), share);
   EXPECT_DOUBLE_EQ(aero::gas_acceleration_share(1.0, c_m), 1.0);  // a single sphere: -grad p
   const Vec2 a{1.5e5, -2.0e3};
-  const Vec2 f = AddedMassModel::force({out.added_mass_fx, out.added_mass_fy}, out.added_mass, a);
+  const Vec2 f =
+      aero::added_mass_force_at({out.added_mass_fx, out.added_mass_fy}, out.added_mass, a);
   const Vec2 published = aero::added_mass_force(c_m, d, 2.07, {3.0e7 * share, -2.0e6 * share}, a);
   EXPECT_NEAR(f.x, published.x, 1e-12 * std::abs(published.x));
   EXPECT_NEAR(f.y, published.y, 1e-12 * std::abs(published.y));
@@ -91,34 +103,23 @@ TEST(AddedMass, ImplicitSubstepsGiveTheExactAccelerationInAUniformGradient) {
   p.diameter = p.real_diameter = d;
   p.density = rho_p;
   ps.add_parcel(p);
-  std::vector<ParcelColumn> cols;
-  for (const char* name : {"gu", "gv", "grot", "gT", "K", "M", "kappa", "H", "jx", "jy", "work",
-                           "heat", "wrel", "m_a", "am_gx", "am_gy", "inv_mt", "am_fx", "am_fy"}) {
-    cols.push_back(ps.attach_column({name, "", false, false}));
-  }
-  GasForcing f;
-  f.pressure = true;
-  f.added_mass = true;
-  f.gas_u = cols[0], f.gas_v = cols[1], f.gas_rotation = cols[2], f.gas_temperature = cols[3];
-  f.drag_coefficient = cols[4], f.magnus_coefficient = cols[5], f.torque_coefficient = cols[6];
-  f.heat_coefficient = cols[7], f.impulse_x = cols[8], f.impulse_y = cols[9], f.work = cols[10];
-  f.heat_in = cols[11], f.relative_rotation = cols[12];
-  f.added_mass_coefficient = cols[13], f.added_mass_gas_x = cols[14], f.added_mass_gas_y = cols[15];
-  f.inv_total_mass = cols[16], f.added_mass_fx = cols[17], f.added_mass_fy = cols[18];
-  ps.set_gas_forcing(f);
+  CouplingConfig c = forcing_fixture::no_effects();
+  c.pressure_force = c.added_mass = true;
+  forcing_fixture::Forcing f(ps, c);
+  using forcing_fixture::column;
   const double vp = kPi / 6.0 * d * d * d, m = rho_p * vp, m_a = c_m * rho_g * vp;
-  ps.pressure_fx[0] = -vp * grad_p;
-  ps.column(cols[13])[0] = m_a;
-  ps.column(cols[14])[0] = -c_m * vp * grad_p;
-  ps.column(cols[16])[0] = 1.0 / (m + m_a);
+  column(ps, "pressure_fx") = -vp * grad_p;
+  column(ps, "added_mass") = m_a;
+  column(ps, "added_mass_gas_x") = -c_m * vp * grad_p;
+  column(ps, "inv_total_mass") = 1.0 / (m + m_a);
   const double t = 2e-6;
   ps.advance(t);
   const double a_exact = -vp * (1.0 + c_m) * grad_p / (m + m_a);
   EXPECT_NEAR(ps.vx[0], a_exact * t, 1e-12 * a_exact * t);
   // The added-mass force stored is F_g - m_a a, and the impulse exchanged is its integral.
   const double f_am = -c_m * vp * grad_p - m_a * a_exact;
-  EXPECT_NEAR(ps.column(cols[17])[0], f_am, 1e-12 * std::abs(f_am));
-  EXPECT_NEAR(ps.column(cols[8])[0], f_am * t, 1e-12 * std::abs(f_am * t));
+  EXPECT_NEAR(column(ps, "added_mass_fx"), f_am, 1e-12 * std::abs(f_am));
+  EXPECT_NEAR(column(ps, "impulse_x"), f_am * t, 1e-12 * std::abs(f_am * t));
   // Without the added mass the same gradient accelerates the bead by the pressure force alone.
   EXPECT_GT(std::abs(a_exact), std::abs(-vp * grad_p / m));
 }
@@ -168,15 +169,16 @@ TEST(TennetiDrag, AndAddedMassAreListedWhenOn) {
   CouplingConfig c;
   c.volume_fraction.kind = aero::VolumeFractionCorrection::Kind::Tenneti;
   c.added_mass = true;
-  const CouplingModels models(c);
-  EXPECT_TRUE(models.writes().added_mass);
+  const CouplingEffects models(c);
   EXPECT_TRUE(models.reads().pressure_gradient);
   std::string all;
   for (const auto& d : models.descriptions()) all += d + "\n";
   EXPECT_NE(all.find("Tenneti"), std::string::npos) << all;
   EXPECT_NE(all.find("added mass"), std::string::npos) << all;
   CouplingConfig paper;
-  EXPECT_FALSE(CouplingModels(paper).writes().added_mass) << "off by default";
+  std::string paper_list;
+  for (const auto& d : CouplingEffects(paper).descriptions()) paper_list += d + "\n";
+  EXPECT_EQ(paper_list.find("added mass"), std::string::npos) << "off by default";
 }
 
 TEST(ParcelFronts, OutermostAndWeightedPercentilePoints) {

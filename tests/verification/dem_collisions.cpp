@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/laws/contact.hpp"
 
 using namespace dustlift;
 
@@ -117,7 +117,8 @@ namespace {
 double angular_momentum(const ParcelSystem& s, double px, double py) {
   double L = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    L += s.mass[i] * ((s.x[i] - px) * s.vy[i] - (s.y[i] - py) * s.vx[i]) + s.inertia[i] * s.omega[i];
+    L +=
+        s.mass[i] * ((s.x[i] - px) * s.vy[i] - (s.y[i] - py) * s.vx[i]) + s.inertia[i] * s.omega[i];
   }
   return L;
 }
@@ -177,7 +178,8 @@ TEST(DemCollision, FrictionFreeObliqueImpactConservesAngularMomentumExactly) {
 namespace {
 
 /// Random gas of parcels in a closed box with walls on all sides.
-ParcelSystem closed_box(int n_side, double damping, double friction, double speed, std::uint64_t seed) {
+ParcelSystem closed_box(int n_side, double damping, double friction, double speed,
+                        std::uint64_t seed) {
   DemConfig c = free_space_config();
   c.contact.damping = damping;
   c.contact.friction = friction;
@@ -213,7 +215,8 @@ double step_with_energy(ParcelSystem& s, double dt, std::vector<double>& before)
   double kinetic = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i) {
     const double* b = &before[3 * s.id[i]];
-    kinetic += 0.5 * s.mass[i] * (b[0] * s.vx[i] + b[1] * s.vy[i]) + 0.5 * s.inertia[i] * b[2] * s.omega[i];
+    kinetic += 0.5 * s.mass[i] * (b[0] * s.vx[i] + b[1] * s.vy[i]) +
+               0.5 * s.inertia[i] * b[2] * s.omega[i];
   }
   return kinetic + potential;
 }
@@ -243,8 +246,9 @@ TEST(DemEnergy, ClosedBoxWithDampingNeverGainsEnergy) {
   EXPECT_LE(e_max, E0);
   EXPECT_LT(worst_rise, 1e-5);
   EXPECT_LT(e, 0.95 * E0);  // collisions did dissipate
-  std::printf("closed box (damped): E_max/E0 = %.9f, largest one-step rise %.2e E0, E_end/E0 = %.4f\n",
-              e_max / E0, worst_rise, e / E0);
+  std::printf(
+      "closed box (damped): E_max/E0 = %.9f, largest one-step rise %.2e E0, E_end/E0 = %.4f\n",
+      e_max / E0, worst_rise, e / E0);
 }
 
 TEST(DemEnergy, ClosedBoxWithoutDampingOrFrictionKeepsEnergy) {

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/dem/contact_law.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/laws/contact.hpp"
 
 using namespace dustlift;
 
@@ -30,9 +30,11 @@ TEST(DemRestingLayer, PaperLayerOfSixtyThousandParcelsStaysAtRestFor10000Steps) 
   EXPECT_LE(ke_max, 1e-30);
   EXPECT_EQ(s.contact_pair_count(), 0u);
   std::size_t moved = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) moved += (s.x[i] != x0[s.id[i]] || s.y[i] != y0[s.id[i]]);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    moved += (s.x[i] != x0[s.id[i]] || s.y[i] != y0[s.id[i]]);
   EXPECT_EQ(moved, 0u);
-  std::printf("paper layer: %zu parcels, 10,000 steps of %.3e s, max KE %.3e J/m\n", s.size(), dt, ke_max);
+  std::printf("paper layer: %zu parcels, 10,000 steps of %.3e s, max KE %.3e J/m\n", s.size(), dt,
+              ke_max);
 }
 
 TEST(DemRestingLayer, BedSettledUnderGravityStaysAtRest) {
@@ -61,7 +63,9 @@ TEST(DemRestingLayer, BedSettledUnderGravityStaysAtRest) {
   }
   const double bound = 1e-6 * weight_work * static_cast<double>(s.size());
   EXPECT_LT(ke_max, bound);
-  std::printf("settled bed: %zu grains, settled in %.3f s, %zu contacts, max KE over 10,000 steps "
-              "%.3e J = %.2e of N m g d\n", s.size(), t_settle, s.contact_pair_count(), ke_max,
-              ke_max / (weight_work * static_cast<double>(s.size())));
+  std::printf(
+      "settled bed: %zu grains, settled in %.3f s, %zu contacts, max KE over 10,000 steps "
+      "%.3e J = %.2e of N m g d\n",
+      s.size(), t_settle, s.contact_pair_count(), ke_max,
+      ke_max / (weight_work * static_cast<double>(s.size())));
 }

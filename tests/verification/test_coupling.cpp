@@ -10,9 +10,9 @@
 
 #include "solver/core/derivatives.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
-#include "solver/coupling/models/pressure_force.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/transport.hpp"
+#include "solver/laws/pressure_force.hpp"
 #include "solver/sim/simulation.hpp"
 
 using namespace dustlift;
@@ -282,13 +282,15 @@ TEST(Coupling, SampledRotationAndPressureForceEqualFullGridDerivatives) {
   }
   ASSERT_NE(rotation, nullptr);
   const double d = scene.particles.particle_diameter;
+  const std::vector<double>& pressure_fx = ps.column(ps.find_part(ForcePart::Pressure, 0));
+  const std::vector<double>& pressure_fy = ps.column(ps.find_part(ForcePart::Pressure, 1));
   std::size_t mismatches = 0;
   for (std::size_t k = 0; k < ps.size(); ++k) {
     const auto [x, y] = position_by_id.at(ps.id[k]);
     const InterpolationStencil st = interpolation_stencil(grid, x, y);
     const Vec2 force = aero::pressure_force(d, {st.apply(dpdx), st.apply(dpdy)});
-    if ((*rotation)[k] != 0.5 * st.apply(vorticity) || ps.pressure_fx[k] != force.x ||
-        ps.pressure_fy[k] != force.y) {
+    if ((*rotation)[k] != 0.5 * st.apply(vorticity) || pressure_fx[k] != force.x ||
+        pressure_fy[k] != force.y) {
       ++mismatches;
     }
   }

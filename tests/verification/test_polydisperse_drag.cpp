@@ -10,8 +10,8 @@
 #include <numbers>
 #include <string>
 
-#include "solver/coupling/models/drag.hpp"
 #include "solver/dem/parcel_system.hpp"
+#include "solver/laws/drag.hpp"
 #include "solver/sim/simulation.hpp"
 
 using namespace dustlift;

@@ -1,8 +1,6 @@
-#include "solver/coupling/models/rotation_torque.hpp"
+#include "solver/laws/rotation_torque.hpp"
 
 #include <cmath>
-
-#include "solver/coupling/coupling_config.hpp"
 
 namespace dustlift::aero {
 
@@ -24,14 +22,3 @@ double rotation_torque(double rho, double mu, double d, double omega_rel, double
 }
 
 }  // namespace dustlift::aero
-
-namespace dustlift {
-
-RotationTorqueModel::RotationTorqueModel(const CouplingConfig& c)
-    : stokes_below_(c.torque_stokes_below) {}
-
-std::string RotationTorqueModel::description() const {
-  return "rotational friction torque (Dennis, Singh & Ingham 1980)";
-}
-
-}  // namespace dustlift

@@ -1,19 +1,11 @@
 #pragma once
-// Drag (Table 1): the published law per real particle, F = beta u_r with the standard curve of
-// Clift & Gauvin, Parmar's compressibility factor xi_1(M, Re) and the volume-fraction factor
-// xi_2(alpha_g); its sub-step coefficient K = beta at the step's slip and the sub-step force
-// F = K u_r at the parcel's current slip. Garbled print forms in the paper are corrected as
-// docs/coupling.md explains.
-#include <string>
-
+// Drag laws (Table 1 and the dense-suspension closures): the force on one real particle is
+// F = beta u_r, u_r the slip (gas minus particle velocity), with beta from the standard curve
+// of Clift & Gauvin, Parmar's compressibility factor xi_1(M, Re) and a volume-fraction
+// closure. Garbled print forms in the paper are corrected as docs/coupling.md explains.
 #include "solver/core/vec2.hpp"
-#include "solver/coupling/models/coupling_model.hpp"
 
-namespace dustlift {
-
-struct CouplingConfig;
-
-namespace aero {
+namespace dustlift::aero {
 
 /// Standard drag curve, Clift & Gauvin (1970); docs/coupling.md (the paper's print lacks
 /// the 0.687 exponent and multiplies where it should divide).
@@ -68,33 +60,14 @@ struct GasAtParcel {
 double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compressible,
                         const VolumeFractionCorrection& c);
 
+/// The drag at the slip u_r for a drag coefficient beta: F = beta u_r (what a DEM sub-step
+/// applies with the beta of the CFD step's start).
+inline Vec2 linear_drag(double beta, Vec2 u_r) {
+  return {beta * u_r.x, beta * u_r.y};
+}
+
 /// Drag on one real particle of diameter d moving with velocity up (Table 1):
 /// F = 3 pi mu d u_r (Re/24) C_D,std xi_1 xi_2, u_r = u_g - u_p.
 Vec2 drag_force(const GasAtParcel& g, Vec2 up, double d, const VolumeFractionCorrection& c);
 
-}  // namespace aero
-
-class DragModel final : public BatchedCouplingModel<DragModel> {
- public:
-  static constexpr ModelTraits kTraits{.reads = {}, .writes = {.drag = true}};
-
-  /// The sub-step force per real particle at the slip u_r: F = K u_r.
-  static Vec2 force(double K, Vec2 u_r) { return {K * u_r.x, K * u_r.y}; }
-
-  explicit DragModel(const CouplingConfig& c);
-  std::string description() const override;
-  /// K = beta (aero::drag_coefficient) at the step's slip.
-  void coefficient(const ModelInput& in, SubstepCoefficients& out) const {
-    const GasSample& g = in.gas;
-    const ParcelAtSample& p = in.parcel;
-    const double slip = in.slip;
-    const aero::GasAtParcel at{g.rho, {g.u, g.v}, g.mu, g.c, g.alpha_g};
-    out.drag = aero::drag_coefficient(at, slip, p.diameter, compressible_, xi2_);
-  }
-
- private:
-  bool compressible_;
-  aero::VolumeFractionCorrection xi2_;
-};
-
-}  // namespace dustlift
+}  // namespace dustlift::aero

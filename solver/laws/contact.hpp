@@ -5,9 +5,16 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/dem/dem_config.hpp"
-
 namespace dustlift {
+
+/// Linear spring–dashpot contact law (Table 1), per REAL particle (docs/dem.md).
+struct ContactParams {
+  double k_n = 5e4;       ///< N/m, normal spring
+  double k_t = 100.0;     ///< N/m, tangential spring (paper's "k_n/k_t = 0.002" read as k_t/k_n)
+  double damping = 1e-4;  ///< N s/m, dashpot h, same normal and tangential (paper)
+  /// Coulomb limit |F_t| <= mu |F_n|; infinity switches the limit off (the paper's Table 1).
+  double friction = 0.5;
+};
 
 /// Damping ratio zeta = h / (2 sqrt(m_eff k_n)) of the overlap ODE m_eff d'' + h d' + k_n d = 0.
 inline double contact_damping_ratio(double m_eff, double k_n, double h) {
@@ -34,9 +41,9 @@ inline double damping_for_restitution(double m_eff, double k_n, double e_n) {
 
 /// Result of one contact evaluated from particle i's side.
 struct ContactResult {
-  double fx, fy;      ///< force on i (per real particle), N
-  double torque;      ///< z torque on i, N m (lever arm r_i)
-  double delta_t;     ///< tangential spring elongation to store for the next step, m
+  double fx, fy;   ///< force on i (per real particle), N
+  double torque;   ///< z torque on i, N m (lever arm r_i)
+  double delta_t;  ///< tangential spring elongation to store for the next step, m
 };
 
 /// One contact seen from i. (nx, ny): unit normal from i to the partner; overlap > 0;

@@ -1,10 +1,7 @@
-#include "solver/coupling/models/drag.hpp"
+#include "solver/laws/drag.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-
-#include "solver/coupling/coupling_config.hpp"
 
 namespace dustlift::aero {
 namespace {
@@ -139,29 +136,7 @@ double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compre
 
 Vec2 drag_force(const GasAtParcel& g, Vec2 up, double d, const VolumeFractionCorrection& c) {
   const Vec2 ur = g.u - up;
-  return DragModel::force(drag_coefficient(g, ur.norm(), d, true, c), ur);
+  return linear_drag(drag_coefficient(g, ur.norm(), d, true, c), ur);
 }
 
 }  // namespace dustlift::aero
-
-namespace dustlift {
-
-DragModel::DragModel(const CouplingConfig& c)
-    : compressible_(c.compressibility_correction), xi2_(c.volume_fraction) {}
-
-std::string DragModel::description() const {
-  std::string s = "drag: Clift-Gauvin";
-  if (compressible_) s += " x Parmar xi_1(M, Re)";
-  if (xi2_.kind == aero::VolumeFractionCorrection::Kind::Sangani) s += " x Sangani xi_2(alpha_g)";
-  if (xi2_.kind == aero::VolumeFractionCorrection::Kind::Linear) s += " x (1 + 5.94 alpha_p)";
-  if (xi2_.kind == aero::VolumeFractionCorrection::Kind::Tenneti)
-    s += " at Re_m, dense arrays by Tenneti et al. 2011 (mean pressure drag taken out)";
-  if (xi2_.kind != aero::VolumeFractionCorrection::Kind::None && xi2_.phi_cap < 1.0) {
-    std::ostringstream cap;
-    cap << " (alpha_p capped at " << xi2_.phi_cap << ")";
-    s += cap.str();
-  }
-  return s;
-}
-
-}  // namespace dustlift
