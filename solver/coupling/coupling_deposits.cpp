@@ -87,7 +87,8 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
   Field2D& se = gas.source(3);
   // Rows [rows, cleared) held parcels before and none now: their sources go back to zero;
   // rows above them never held any. Every cell on its own: any split over threads.
-#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(cleared_to_) * nx >= kParallelMinimum)
+#pragma omp parallel for schedule(static) if (static_cast <std::size_t>(cleared_to_) * nx >= \
+                                              kParallelMinimum)
   for (int j = 0; j < cleared_to_; ++j) {
     for (int i = 0; i < nx; ++i) {
       alpha_g_(i, j) = 1.0 - std::min(alpha_p_(i, j), cfg_.max_volume_fraction);

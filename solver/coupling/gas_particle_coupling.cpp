@@ -152,6 +152,30 @@ void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
   gas.initialize_porosity(alpha_g_);
 }
 
+FlowEnvelope GasParticleCoupling::flow_envelope(const GasSolver& gas) const {
+  double d = dem_cfg_.particle_diameter;
+  for (const SizeClass& c : dem_cfg_.size_classes) d = std::max(d, c.diameter);
+  const GasPrimitives g = gas.primitives();
+  FlowEnvelope e;
+  for (int j = 0; j < grid_.ny(); ++j) {
+    for (int i = 0; i < grid_.nx(); ++i) {
+      e.max_volume_fraction = std::max(e.max_volume_fraction, alpha_p_(i, j));
+      const double T = (*g.T)(i, j), rho = (*g.rho)(i, j);
+      const double speed = std::hypot((*g.u)(i, j), (*g.v)(i, j));
+      const GasProperties::At th = props_->thermo(T);
+      const double mu = props_->transport(T, th.cp).mu;
+      e.max_reynolds = std::max(e.max_reynolds, rho * speed * d / mu);
+      e.max_mach = std::max(e.max_mach, speed / th.c);
+    }
+  }
+  if (const CouplingSlab* s = slab()) {
+    e.max_volume_fraction = s->max(e.max_volume_fraction);
+    e.max_reynolds = s->max(e.max_reynolds);
+    e.max_mach = s->max(e.max_mach);
+  }
+  return e;
+}
+
 void GasParticleCoupling::check_parcels(const ParcelSystem& ps) const {
   const std::size_t n = ps.size();
   std::size_t first_bad = n;

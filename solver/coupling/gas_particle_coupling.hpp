@@ -105,6 +105,10 @@ class GasParticleCoupling {
   std::vector<std::string> model_descriptions() const { return effects_.descriptions(); }
   /// The active effects (what they read, their validity).
   const CouplingEffects& effects() const { return effects_; }
+  /// What the flow asks of the effects' laws now: the densest deposited alpha_p, and the
+  /// Reynolds and Mach numbers of the largest particle at rest in the fastest gas (collective on
+  /// several ranks).
+  FlowEnvelope flow_envelope(const GasSolver& gas) const;
 
   /// What one advance() leaves for the next (checkpoints read it through alpha_p(),
   /// rows_touched(), rest_pressure() and rest_temperature()): the deposited alpha_p

@@ -156,6 +156,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       s.lambda = tp.lambda;
       s.c = th.c;
       s.cp = th.cp;
+      s.gamma = th.gamma;
       s.alpha_g = 1.0 - std::min(value[kAlphaP][q], cfg_.max_volume_fraction);
       s.vorticity = value[kVorticity][q];
       s.dpdx = value[kDpdx][q];

@@ -98,7 +98,9 @@ SteppedParcels RestingParcels::plan(const GasSolver& gas, ParcelSystem& ps, doub
     const bool valid = ref.valid;
     const double T_ref = ref.T, dT = ref.dT, du = ref.du;
     double front = -std::numeric_limits<double>::infinity(), v_max = 0.0, d_max = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : front, v_max, d_max) if (n >= kParallelMinimum)
+#pragma omp parallel for schedule(static) \
+    reduction(max                         \
+              : front, v_max, d_max) if (n >= kParallelMinimum)
     for (std::size_t k = 0; k < n; ++k) {
       bool rests = valid && std::abs(ps.temperature[k] - T_ref) <= dT;
       if (rests) {
@@ -156,7 +158,10 @@ SteppedParcels RestingParcels::plan(const GasSolver& gas, ParcelSystem& ps, doub
          y_max = grid.y().start();
   const double* px = ps.x.data();
   const double* py = ps.y.data();
-#pragma omp parallel for schedule(static) reduction(max : x_max, y_max) reduction(min : y_min) if (n >= kParallelMinimum)
+#pragma omp parallel for schedule(static) reduction(max             \
+                                                    : x_max, y_max) \
+    reduction(min                                                   \
+              : y_min) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {
     active[k] = k < limit ? 1.0 : 0.0;
     if (k < limit) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/laws/dense_drag.hpp"
+
 namespace dustlift::aero {
 namespace {
 
@@ -103,6 +105,7 @@ double xi2(double alpha_g, const VolumeFractionCorrection& c) {
   switch (c.kind) {
     case VolumeFractionCorrection::Kind::None:
     case VolumeFractionCorrection::Kind::Tenneti:
+    case VolumeFractionCorrection::Kind::Osnes:
       return 1.0;
     case VolumeFractionCorrection::Kind::Linear:
       return 1.0 + 5.94 * phi;
@@ -113,22 +116,18 @@ double xi2(double alpha_g, const VolumeFractionCorrection& c) {
   return (1.0 + 2.0 * phi) / (ag * ag * ag);
 }
 
-double tenneti_drag_factor(double re_cd_isolated, double re, double phi) {
-  const double ag = 1.0 - phi;
-  const double b1 = 5.81 * phi / (ag * ag) + 0.48 * std::cbrt(phi) / (ag * ag * ag);
-  const double phi3 = phi * phi * phi;
-  const double b2 = ag * ag * phi3 * re * (0.95 + 0.61 * phi3 / (ag * ag));
-  return re_cd_isolated / 24.0 / ag + ag * (b1 + b2);
-}
-
 double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compressible,
                         const VolumeFractionCorrection& c) {
   const double re = g.rho * slip * d / g.mu;
-  if (c.kind == VolumeFractionCorrection::Kind::Tenneti) {
+  if (c.kind == VolumeFractionCorrection::Kind::Tenneti ||
+      c.kind == VolumeFractionCorrection::Kind::Osnes) {
     const double phi = std::clamp(1.0 - g.alpha_g, 0.0, c.phi_cap);
-    const double re_m = (1.0 - phi) * re;
-    const double re_cd = compressible ? re_cd_parmar(slip / g.c, re_m) : re_cd_standard(re_m);
-    return 3.0 * kPi * g.mu * d * tenneti_drag_factor(re_cd, re, phi);
+    const double f =
+        c.kind == VolumeFractionCorrection::Kind::Tenneti
+            ? tenneti_drag_factor(re, phi)
+            : osnes_drag_factor(re, slip / g.c, knudsen_number(g.rho, g.mu, g.c, d, g.gamma),
+                                g.gamma, phi);
+    return 3.0 * kPi * g.mu * d * f;
   }
   const double re_cd = compressible ? re_cd_parmar(slip / g.c, re) : re_cd_standard(re);
   return 3.0 * kPi * g.mu * d * re_cd / 24.0 * xi2(g.alpha_g, c);

@@ -20,30 +20,18 @@ double re_cd_parmar(double mach, double re);
 /// xi_1(M, Re) = C_D(M, Re) / C_D,std(Re).
 double xi1_parmar(double mach, double re);
 
-/// How the volume-fraction correction xi_2(alpha_g) is evaluated.
+/// The drag closure for a particle among others: a volume-fraction factor xi_2(alpha_g) on the
+/// isolated sphere's drag (Sangani, linear, none), or a closure of dense suspensions as a whole
+/// (Tenneti, Osnes: dense_drag.hpp).
 struct VolumeFractionCorrection {
-  enum class Kind { None, Sangani, Linear, Tenneti };
+  enum class Kind { None, Sangani, Linear, Tenneti, Osnes };
   Kind kind = Kind::Sangani;
   /// phi = alpha_p is capped at this value before evaluation (1 = no cap).
   double phi_cap = 1.0;
 };
 /// Sangani, Zhang & Prosperetti (1991) as used by Ling et al. (2012):
-/// xi_2 = (1 + 2 phi) / (1 - phi)^3; Linear: 1 + 5.94 phi; None: 1. (Tenneti is not a factor
-/// on the isolated drag: see tenneti_drag_factor.)
+/// xi_2 = (1 + 2 phi) / (1 - phi)^3; Linear: 1 + 5.94 phi; None, Tenneti, Osnes: 1.
 double xi2(double alpha_g, const VolumeFractionCorrection& c);
-
-/// Tenneti, Garg & Subramaniam (2011, Int. J. Multiphase Flow 37:1072), from particle-resolved
-/// simulations of random arrays at 0.1 <= phi <= 0.5, 0.01 <= Re_m <= 300: the drag of one
-/// particle per 3 pi mu d u_r, with the mean pressure drag taken out (the pressure-gradient
-/// force -V_p grad p is its own effect), as OpenFOAM's Tenneti model and Osnes et al. (2023,
-/// Int. J. Multiphase Flow 165:104485) take it:
-///   F = (Re_m C_D(Re_m) / 24) / (1 - phi) + (1 - phi) (b1 + b2),  Re_m = (1 - phi) Re,
-///   b1 = 5.81 phi / (1 - phi)^2 + 0.48 phi^(1/3) / (1 - phi)^3,
-///   b2 = (1 - phi)^2 phi^3 Re (0.95 + 0.61 phi^3 / (1 - phi)^2),
-/// with the isolated sphere's Re C_D given at Re_m (`re_cd_isolated`, the scene's curve:
-/// Clift-Gauvin, or Parmar's compressible one). Tenneti's own isolated curve is
-/// Schiller-Naumann's, 24 (1 + 0.15 Re^0.687), which Clift-Gauvin extends.
-double tenneti_drag_factor(double re_cd_isolated, double re, double phi);
 
 /// Local gas state interpolated to a parcel (eq. 16).
 struct GasAtParcel {
@@ -52,11 +40,14 @@ struct GasAtParcel {
   double mu = 1.8e-5;  ///< Pa s
   double c = 340.0;    ///< m/s
   double alpha_g = 1.0;
+  double gamma = 1.4;  ///< ratio of specific heats (Osnes's Knudsen number)
 };
 
 /// Drag per unit slip speed of one real particle, beta in F_drag = beta u_r (Table 1):
 /// beta = 3 pi mu d (Re C_D / 24) xi_2(alpha_g), C_D with Parmar's xi_1(M, Re) when
-/// `compressible`, else the Clift-Gauvin curve; finite at zero slip (Stokes).
+/// `compressible`, else the Clift-Gauvin curve; finite at zero slip (Stokes). The Tenneti and
+/// Osnes closures give beta as published (dense_drag.hpp; Tenneti is incompressible, Osnes has
+/// its own Mach-number dependence: `compressible` does not apply to them).
 double drag_coefficient(const GasAtParcel& g, double slip, double d, bool compressible,
                         const VolumeFractionCorrection& c);
 

@@ -25,11 +25,14 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
   c.compressibility_correction =
       t.boolean("compressibility_correction", c.compressibility_correction);
   const auto vf =
-      t.choice("volume_fraction_correction", "sangani", {"sangani", "tenneti", "linear", "none"});
-  c.volume_fraction.kind = vf == "sangani"   ? aero::VolumeFractionCorrection::Kind::Sangani
-                           : vf == "tenneti" ? aero::VolumeFractionCorrection::Kind::Tenneti
-                           : vf == "linear"  ? aero::VolumeFractionCorrection::Kind::Linear
-                                             : aero::VolumeFractionCorrection::Kind::None;
+      t.choice("volume_fraction_correction", "sangani",
+               {"sangani", "osnes", "tenneti", "linear", "none"});
+  using Closure = aero::VolumeFractionCorrection::Kind;
+  c.volume_fraction.kind = vf == "sangani"   ? Closure::Sangani
+                           : vf == "osnes"   ? Closure::Osnes
+                           : vf == "tenneti" ? Closure::Tenneti
+                           : vf == "linear"  ? Closure::Linear
+                                             : Closure::None;
   c.volume_fraction.phi_cap = t.number("volume_fraction_cap", 1.0, Range::open_closed(0.0, 1.0));
   c.magnus = t.boolean("magnus", c.magnus);
   c.magnus_coefficient =

@@ -144,9 +144,11 @@ constexpr SceneKeyDoc kDocs[] = {
     {"coupling.two_way", "", "the particles act back on the gas (porosity and exchange terms)"},
     {"coupling.drag", "",
      "drag (Clift-Gauvin with Parmar's compressibility and the dense-array factor)"},
-    {"coupling.compressibility_correction", "", "Parmar et al.'s Mach-number factor of the drag"},
+    {"coupling.compressibility_correction", "",
+     "Parmar et al.'s Mach-number factor of the drag (not with the osnes and tenneti closures)"},
     {"coupling.volume_fraction_correction", "",
-     "dense-array drag factor: Sangani et al., Tenneti et al., linear, or none"},
+     "the drag among other particles: Sangani et al.'s factor (the paper's), the closures of "
+     "Osnes et al. 2023 or Tenneti et al. 2011 for dense suspensions, linear, or none"},
     {"coupling.volume_fraction_cap", "1",
      "the solid fraction at which the dense-array factor stops growing"},
     {"coupling.magnus", "", "the Magnus (rotational) lift force"},

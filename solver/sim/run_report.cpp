@@ -93,6 +93,9 @@ std::vector<std::string> Simulation::enabled_effects() const {
                         : "coupling: one-way (gas does not feel the particles)");
   if (coupling_) {
     for (const std::string& m : coupling_->model_descriptions()) e.push_back(m);
+    // Where this scene takes a law beyond the range it was fitted in.
+    for (const std::string& m : coupling_->effects().validity(coupling_->flow_envelope(*gas_)))
+      e.push_back("out of range: " + m);
   }
   if (d.gravity_x != 0.0 || d.gravity_y != 0.0) {
     e.push_back("gravity on the parcels: (" + fmt_number(d.gravity_x) + ", " +

@@ -59,7 +59,7 @@ TEST(SceneKeys, TheParserRecordsItsOwnDefaultsAndRanges) {
             "from particles.diameter (no coarse graining)");
   EXPECT_EQ(facts.at("coupling.volume_fraction_correction").kind, "one of");
   EXPECT_EQ(facts.at("coupling.volume_fraction_correction").range,
-            "\"sangani\", \"tenneti\", \"linear\", \"none\"");
+            "\"sangani\", \"osnes\", \"tenneti\", \"linear\", \"none\"");
   EXPECT_EQ(facts.at("run.end_time").fallback, "required");
 }
 

@@ -32,7 +32,7 @@ class DragEffect final : public BatchedEffect<DragEffect> {
   /// K = beta (aero::drag_coefficient) at the step's slip.
   void coefficient(const ModelInput& in, std::size_t k, Columns& out) const {
     const GasSample& g = in.gas;
-    const aero::GasAtParcel at{g.rho, {g.u, g.v}, g.mu, g.c, g.alpha_g};
+    const aero::GasAtParcel at{g.rho, {g.u, g.v}, g.mu, g.c, g.alpha_g, g.gamma};
     out.sampled[k] = out.applied[k] =
         aero::drag_coefficient(at, in.slip, in.parcel.diameter, compressible_, xi2_);
   }

@@ -25,7 +25,7 @@ namespace dustlift {
 /// Gas interpolated to a parcel (eq. 16) with the derived fields the effects read.
 struct GasSample {
   double rho = 1.0, u = 0.0, v = 0.0, p = 0.0, T = 300.0;
-  double mu = 1.8e-5, lambda = 0.026, c = 340.0, cp = 1005.0;
+  double mu = 1.8e-5, lambda = 0.026, c = 340.0, cp = 1005.0, gamma = 1.4;
   double alpha_g = 1.0;
   double vorticity = 0.0;  ///< omega_z = dv/dx - du/dy
   double dpdx = 0.0, dpdy = 0.0;
