@@ -10,7 +10,8 @@ namespace dustlift {
 
 void ShockTrajectory::record(double time, double shock_x, double max_advance) {
   if (std::isnan(shock_x)) return;
-  if (!times_.empty() && time < times_.back()) throw std::invalid_argument("ShockTrajectory: time went back");
+  if (!times_.empty() && time < times_.back())
+    throw std::invalid_argument("ShockTrajectory: time went back");
   if (!reaches_.empty() && shock_x > reaches_.back() + max_advance) {
     ++ignored_jumps_;
     return;
@@ -136,31 +137,30 @@ double BandForceAccumulator::mean(Quantity q, std::size_t bin) const {
 }
 
 double BandForceAccumulator::contact_window_mean(int component, std::size_t bin) const {
-  const std::size_t w = bin_of(bin_center(bin), options_.tau_min, options_.contact_window,
-                               window_count_.size());
+  const std::size_t w =
+      bin_of(bin_center(bin), options_.tau_min, options_.contact_window, window_count_.size());
   if (w == npos || window_count_[w] == 0) return std::numeric_limits<double>::quiet_NaN();
   return window_sum_[static_cast<std::size_t>(component)][w] /
          static_cast<double>(window_count_[w]);
 }
 
 SeriesTable BandForceAccumulator::table() const {
-  SeriesTable t("forces_" + band_.name,
-                {{"tau", "s"},
-                 {"samples", "1"},
-                 {"height", "m"},
-                 {"contact_x", "N"},
-                 {"contact_y", "N"},
-                 {"drag_x", "N"},
-                 {"drag_y", "N"},
-                 {"magnus_x", "N"},
-                 {"magnus_y", "N"},
-                 {"pressure_x", "N"},
-                 {"pressure_y", "N"},
-                 {"contact_window_x", "N"},
-                 {"contact_window_y", "N"},
-                 {"relative_rotation", "rad/s"},
-                 {"particle_rotation", "rad/s"},
-                 {"gas_rotation", "rad/s"}});
+  SeriesTable t("forces_" + band_.name, {{"tau", "s"},
+                                         {"samples", "1"},
+                                         {"height", "m"},
+                                         {"contact_x", "N"},
+                                         {"contact_y", "N"},
+                                         {"drag_x", "N"},
+                                         {"drag_y", "N"},
+                                         {"magnus_x", "N"},
+                                         {"magnus_y", "N"},
+                                         {"pressure_x", "N"},
+                                         {"pressure_y", "N"},
+                                         {"contact_window_x", "N"},
+                                         {"contact_window_y", "N"},
+                                         {"relative_rotation", "rad/s"},
+                                         {"particle_rotation", "rad/s"},
+                                         {"gas_rotation", "rad/s"}});
   std::vector<double> row(t.columns().size());
   for (std::size_t b = 0; b < bins(); ++b) {
     if (count_[b] == 0) continue;
@@ -194,7 +194,8 @@ std::size_t used_bins(const std::vector<std::size_t>& count) {
 
 /// Copies the stored bins into `into` (as many as both have); counts must not be negative.
 template <class Stored, class Into>
-void restore_bins(const std::vector<Stored>& stored, std::vector<Into>& into, const std::string& name) {
+void restore_bins(const std::vector<Stored>& stored, std::vector<Into>& into,
+                  const std::string& name) {
   std::fill(into.begin(), into.end(), Into{});
   for (std::size_t b = 0; b < std::min(stored.size(), into.size()); ++b) {
     if constexpr (std::is_integral_v<Stored>) {
@@ -222,7 +223,8 @@ void BandForceAccumulator::restore_state(const Snapshot& s, const std::string& p
   const std::size_t bins = samples.size();
   restore_bins(samples, count_, prefix + "samples");
   for (std::size_t q = 0; q < kQuantityCount; ++q) {
-    const std::string sum = prefix + "sum_" + std::to_string(q), count = prefix + "count_" + std::to_string(q);
+    const std::string sum = prefix + "sum_" + std::to_string(q),
+                      count = prefix + "count_" + std::to_string(q);
     if (bins > 0) {
       restore_bins(snapshot_array(s.f64, sum, bins), sum_[q], sum);
       restore_bins(snapshot_array(s.i64, count, bins), quantity_count_[q], count);

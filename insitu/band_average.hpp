@@ -22,17 +22,17 @@ namespace dustlift {
 /// inputs (empty spans) give NaN columns.
 struct BandParcelsView {
   std::size_t count = 0;
-  Vec2Columns initial_position;              ///< m
-  std::span<const double> y;                 ///< m, current height
+  Vec2Columns initial_position;                                         ///< m
+  std::span<const double> y;                                            ///< m, current height
   Vec2Columns force_contact, force_drag, force_magnus, force_pressure;  ///< N
-  std::span<const double> arrival_time;      ///< s; NaN: shock not arrived yet (skipped)
-  std::span<const double> relative_rotation; ///< rad/s, Magnus input w_r (DEM convention)
-  std::span<const double> particle_rotation; ///< rad/s, w_p
-  std::span<const double> gas_rotation;      ///< rad/s, gas rotation (half vorticity) at parcel
+  std::span<const double> arrival_time;       ///< s; NaN: shock not arrived yet (skipped)
+  std::span<const double> relative_rotation;  ///< rad/s, Magnus input w_r (DEM convention)
+  std::span<const double> particle_rotation;  ///< rad/s, w_p
+  std::span<const double> gas_rotation;       ///< rad/s, gas rotation (half vorticity) at parcel
 };
 
 struct Band {
-  std::string name;  ///< used in the series name forces_<name>
+  std::string name;                                   ///< used in the series name forces_<name>
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< m, box of initial positions
   bool contains(double x0, double y0) const {
     return x0 >= x_min && x0 < x_max && y0 >= y_min && y0 < y_max;
@@ -40,10 +40,10 @@ struct Band {
 };
 
 struct BandAverageOptions {
-  double tau_min = 0.0;           ///< s, first bin start (negative: before arrival)
-  double tau_max = 1e-3;          ///< s, last bin end
-  double bin_width = 1e-6;        ///< s
-  double contact_window = 1e-5;   ///< s, window of the extra contact-force average
+  double tau_min = 0.0;          ///< s, first bin start (negative: before arrival)
+  double tau_max = 1e-3;         ///< s, last bin end
+  double bin_width = 1e-6;       ///< s
+  double contact_window = 1e-5;  ///< s, window of the extra contact-force average
 };
 
 /// When the shock reached each x: the sampled shock positions with their running maximum,
@@ -86,8 +86,17 @@ class BandForceAccumulator {
   /// Averaged quantities, in column order after tau and samples.
   enum Quantity : std::size_t {
     kHeight,
-    kContactX, kContactY, kDragX, kDragY, kMagnusX, kMagnusY, kPressureX, kPressureY,
-    kRelativeRotation, kParticleRotation, kGasRotation,
+    kContactX,
+    kContactY,
+    kDragX,
+    kDragY,
+    kMagnusX,
+    kMagnusY,
+    kPressureX,
+    kPressureY,
+    kRelativeRotation,
+    kParticleRotation,
+    kGasRotation,
     kQuantityCount
   };
 

@@ -171,7 +171,8 @@ class CatalystObserver final : public Observer {
     const auto t0 = std::chrono::steady_clock::now();
     gather_gas_cells(
         *view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
-        &dust_concentration_of(view, concentration_), [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
+        &dust_concentration_of(view, concentration_),
+        [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
     CatalystFrame f;
     f.time = view.time;
     f.step = view.step;
@@ -198,7 +199,7 @@ class CatalystObserver final : public Observer {
   std::string module_path_;
   CatalystFactory factory_ = nullptr;
   std::unique_ptr<CatalystPipelines> pipelines_;
-  GasCellArrays gas_;  // reused: no reallocation after the first frame
+  GasCellArrays gas_;      // reused: no reallocation after the first frame
   Field2D vorticity_;      // for a view without the run's derived fields (made by hand)
   Field2D concentration_;  // likewise
   /// insitu.catalyst.interval (simulated s) or interval_steps.

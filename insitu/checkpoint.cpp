@@ -79,7 +79,8 @@ class QuietHdf5 {
 
 std::string read_file(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw CheckpointError(path + ": is a folder, not a checkpoint file");
+  if (std::filesystem::is_directory(path, ec))
+    throw CheckpointError(path + ": is a folder, not a checkpoint file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CheckpointError(path + ": cannot open checkpoint file");
   std::ostringstream s;
@@ -96,9 +97,11 @@ void write_dataset(hid_t file, const std::string& name, hid_t file_type, hid_t m
   Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace for " + name);
   Handle links(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "link properties");
   check(H5Pset_create_intermediate_group(links, 1), "intermediate groups");
-  Handle set(H5Dcreate2(file, name.c_str(), file_type, space, links, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-             "create dataset " + name);
-  if (n > 0) check(H5Dwrite(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "write " + name);
+  Handle set(H5Dcreate2(file, name.c_str(), file_type, space, links, H5P_DEFAULT, H5P_DEFAULT),
+             H5Dclose, "create dataset " + name);
+  if (n > 0)
+    check(H5Dwrite(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+          "write " + name);
 }
 
 void write_text(hid_t file, const std::string& name, const std::string& text) {
@@ -119,7 +122,8 @@ void write_format_attribute(hid_t file) {
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
   check(H5Tset_size(type, value.size()), "string size");
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
-  Handle attr(H5Acreate2(file, "format", type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "create format");
+  Handle attr(H5Acreate2(file, "format", type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              "create format");
   check(H5Awrite(attr, type, value.data()), "write format");
 }
 
@@ -149,13 +153,16 @@ Kind kind_of(hid_t type, const std::string& name) {
 template <class T>
 std::vector<T> read_numbers(hid_t set, hid_t memory_type, hsize_t n, const std::string& name) {
   std::vector<T> v(static_cast<std::size_t>(n));
-  if (n > 0) check(H5Dread(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "cannot read " + name);
+  if (n > 0)
+    check(H5Dread(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+          "cannot read " + name);
   return v;
 }
 
 void read_dataset(hid_t file, const std::string& name, std::size_t file_bytes, Snapshot& s) {
   H5O_type_t object_type = H5O_TYPE_UNKNOWN;
-  if (H5Oexists_by_name(file, name.c_str(), H5P_DEFAULT) <= 0) throw CheckpointError("'" + name + "' is not an object");
+  if (H5Oexists_by_name(file, name.c_str(), H5P_DEFAULT) <= 0)
+    throw CheckpointError("'" + name + "' is not an object");
   Handle object(H5Oopen(file, name.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + name + "'");
   object_type = H5Iget_type(object) == H5I_DATASET ? H5O_TYPE_DATASET : H5O_TYPE_UNKNOWN;
   if (object_type != H5O_TYPE_DATASET) throw CheckpointError("'" + name + "' is not a dataset");
@@ -163,7 +170,8 @@ void read_dataset(hid_t file, const std::string& name, std::size_t file_bytes, S
   Handle space(H5Dget_space(object), H5Sclose, "dataspace of " + name);
   const Kind kind = kind_of(type, name);
   const int rank = H5Sget_simple_extent_ndims(space);
-  if (kind == Kind::Text ? rank != 0 : rank != 1) throw CheckpointError("dataset '" + name + "' has the wrong rank");
+  if (kind == Kind::Text ? rank != 0 : rank != 1)
+    throw CheckpointError("dataset '" + name + "' has the wrong rank");
   const hssize_t points = H5Sget_simple_extent_npoints(space);
   const std::size_t element = H5Tget_size(type);
   // Nothing we write is compressed: more data than the file holds means a forged extent.
@@ -172,13 +180,22 @@ void read_dataset(hid_t file, const std::string& name, std::size_t file_bytes, S
   }
   const auto n = static_cast<hsize_t>(points);
   switch (kind) {
-    case Kind::F64: s.f64[name] = read_numbers<double>(object, H5T_NATIVE_DOUBLE, n, name); break;
-    case Kind::I64: s.i64[name] = read_numbers<std::int64_t>(object, H5T_NATIVE_INT64, n, name); break;
-    case Kind::I32: s.i32[name] = read_numbers<std::int32_t>(object, H5T_NATIVE_INT32, n, name); break;
-    case Kind::I8: s.i8[name] = read_numbers<std::int8_t>(object, H5T_NATIVE_INT8, n, name); break;
+    case Kind::F64:
+      s.f64[name] = read_numbers<double>(object, H5T_NATIVE_DOUBLE, n, name);
+      break;
+    case Kind::I64:
+      s.i64[name] = read_numbers<std::int64_t>(object, H5T_NATIVE_INT64, n, name);
+      break;
+    case Kind::I32:
+      s.i32[name] = read_numbers<std::int32_t>(object, H5T_NATIVE_INT32, n, name);
+      break;
+    case Kind::I8:
+      s.i8[name] = read_numbers<std::int8_t>(object, H5T_NATIVE_INT8, n, name);
+      break;
     case Kind::Text: {
       std::string text(element, '\0');
-      check(H5Dread(object, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()), "cannot read " + name);
+      check(H5Dread(object, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()),
+            "cannot read " + name);
       text.erase(text.find_last_not_of('\0') + 1);
       s.text[name] = text;
       break;
@@ -202,23 +219,30 @@ std::string read_format(hid_t file) {
 }
 
 /// Reads every dataset of group `path` into `s`, and its sub-groups down to kMaxGroupDepth.
-void read_group(hid_t file, const std::string& path, int depth, std::size_t file_bytes, hsize_t& entries, Snapshot& s) {
-  Handle group(H5Gopen2(file, path.c_str(), H5P_DEFAULT), H5Gclose, "'" + path + "' is not a group");
+void read_group(hid_t file, const std::string& path, int depth, std::size_t file_bytes,
+                hsize_t& entries, Snapshot& s) {
+  Handle group(H5Gopen2(file, path.c_str(), H5P_DEFAULT), H5Gclose,
+               "'" + path + "' is not a group");
   H5G_info_t info;
   check(H5Gget_info(group, &info), "cannot list group '" + path + "'");
   entries += info.nlinks;
-  if (info.nlinks > 1000 || entries > kMaxEntries) throw CheckpointError("group '" + path + "' has too many entries");
+  if (info.nlinks > 1000 || entries > kMaxEntries)
+    throw CheckpointError("group '" + path + "' has too many entries");
   for (hsize_t k = 0; k < info.nlinks; ++k) {
-    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+    const ssize_t len =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
     if (len <= 0 || len > 256) throw CheckpointError("bad entry name in group '" + path + "'");
     std::string name(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), name.size(), H5P_DEFAULT);
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), name.size(),
+                       H5P_DEFAULT);
     name.resize(static_cast<std::size_t>(len));
     const std::string full = path + "/" + name;
-    if (H5Oexists_by_name(file, full.c_str(), H5P_DEFAULT) <= 0) throw CheckpointError("'" + full + "' is not an object");
+    if (H5Oexists_by_name(file, full.c_str(), H5P_DEFAULT) <= 0)
+      throw CheckpointError("'" + full + "' is not an object");
     bool is_group = false;
     {
-      Handle object(H5Oopen(file, full.c_str(), H5P_DEFAULT), H5Oclose, "cannot open '" + full + "'");
+      Handle object(H5Oopen(file, full.c_str(), H5P_DEFAULT), H5Oclose,
+                    "cannot open '" + full + "'");
       is_group = H5Iget_type(object) == H5I_GROUP;
     }
     if (is_group) {
@@ -232,9 +256,12 @@ void read_group(hid_t file, const std::string& path, int depth, std::size_t file
 
 Snapshot read_layout(const std::string& path, std::size_t file_bytes) {
   QuietHdf5 quiet;
-  if (H5Fis_hdf5(path.c_str()) <= 0) throw CheckpointError("not an HDF5 file behind the checkpoint header");
-  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "HDF5 cannot open the file");
-  if (read_format(file) != kFormat) throw CheckpointError("HDF5 file without the dustlift checkpoint layout (no format attribute)");
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    throw CheckpointError("not an HDF5 file behind the checkpoint header");
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+              "HDF5 cannot open the file");
+  if (read_format(file) != kFormat)
+    throw CheckpointError("HDF5 file without the dustlift checkpoint layout (no format attribute)");
   Snapshot s;
   hsize_t entries = 0;
   for (const char* g : kGroups) {
@@ -258,16 +285,19 @@ void seal_checkpoint(const std::string& path) {
     throw CheckpointError(std::string("sealing ") + e.what());
   }
   if (bytes.size() < kCheckpointHeaderBytes) throw CheckpointError(path + ": too short to seal");
-  const std::uint64_t hash = fnv1a64(bytes.data() + kCheckpointHeaderBytes, bytes.size() - kCheckpointHeaderBytes);
+  const std::uint64_t hash =
+      fnv1a64(bytes.data() + kCheckpointHeaderBytes, bytes.size() - kCheckpointHeaderBytes);
   char header[kCheckpointHeaderBytes] = {};
   std::snprintf(header, sizeof header, "%slength %llu\nfnv1a64 %016llx\n", kMagic,
-                static_cast<unsigned long long>(bytes.size()), static_cast<unsigned long long>(hash));
+                static_cast<unsigned long long>(bytes.size()),
+                static_cast<unsigned long long>(hash));
   const int fd = ::open(path.c_str(), O_WRONLY);
   if (fd < 0) throw CheckpointError(path + ": cannot open to seal");
   const ssize_t written = ::pwrite(fd, header, sizeof header, 0);
   const int synced = ::fsync(fd);
   ::close(fd);
-  if (written != static_cast<ssize_t>(sizeof header) || synced != 0) throw CheckpointError(path + ": cannot write the header");
+  if (written != static_cast<ssize_t>(sizeof header) || synced != 0)
+    throw CheckpointError(path + ": cannot write the header");
 }
 
 void write_checkpoint(const std::string& path, const Snapshot& s) {
@@ -278,12 +308,17 @@ void write_checkpoint(const std::string& path, const Snapshot& s) {
     {
       Handle create(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file properties");
       check(H5Pset_userblock(create, kCheckpointHeaderBytes), "user block");
-      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, create, H5P_DEFAULT), H5Fclose, "cannot create " + tmp);
+      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, create, H5P_DEFAULT), H5Fclose,
+                  "cannot create " + tmp);
       write_format_attribute(file);
-      for (const auto& [name, v] : s.f64) write_dataset(file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v);
-      for (const auto& [name, v] : s.i64) write_dataset(file, name, H5T_STD_I64LE, H5T_NATIVE_INT64, v);
-      for (const auto& [name, v] : s.i32) write_dataset(file, name, H5T_STD_I32LE, H5T_NATIVE_INT32, v);
-      for (const auto& [name, v] : s.i8) write_dataset(file, name, H5T_STD_I8LE, H5T_NATIVE_INT8, v);
+      for (const auto& [name, v] : s.f64)
+        write_dataset(file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v);
+      for (const auto& [name, v] : s.i64)
+        write_dataset(file, name, H5T_STD_I64LE, H5T_NATIVE_INT64, v);
+      for (const auto& [name, v] : s.i32)
+        write_dataset(file, name, H5T_STD_I32LE, H5T_NATIVE_INT32, v);
+      for (const auto& [name, v] : s.i8)
+        write_dataset(file, name, H5T_STD_I8LE, H5T_NATIVE_INT8, v);
       for (const auto& [name, t] : s.text) write_text(file, name, t);
       check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + tmp);
     }
@@ -303,8 +338,9 @@ Snapshot read_checkpoint(const std::string& path) {
   const std::size_t magic_len = std::strlen(kMagic);
   if (bytes.compare(0, magic_len, kMagic) != 0) {
     const bool hdf5 = bytes.compare(0, 8, "\x89HDF\r\n\x1a\n") == 0;
-    throw CheckpointError(path + (hdf5 ? ": an HDF5 file but not a dustlift checkpoint (no checkpoint header)"
-                                       : ": not a dustlift checkpoint (foreign file: no checkpoint header)"));
+    throw CheckpointError(
+        path + (hdf5 ? ": an HDF5 file but not a dustlift checkpoint (no checkpoint header)"
+                     : ": not a dustlift checkpoint (foreign file: no checkpoint header)"));
   }
   unsigned long long length = 0, hash = 0;
   const std::string header = bytes.substr(0, std::min(bytes.size(), kCheckpointHeaderBytes));
@@ -312,14 +348,15 @@ Snapshot read_checkpoint(const std::string& path) {
     throw CheckpointError(path + ": corrupt checkpoint header");
   }
   if (bytes.size() < length) {
-    throw CheckpointError(path + ": truncated checkpoint (" + std::to_string(bytes.size()) + " of " +
-                          std::to_string(length) + " bytes)");
+    throw CheckpointError(path + ": truncated checkpoint (" + std::to_string(bytes.size()) +
+                          " of " + std::to_string(length) + " bytes)");
   }
   if (bytes.size() != length || length < kCheckpointHeaderBytes) {
     throw CheckpointError(path + ": corrupt checkpoint (length " + std::to_string(bytes.size()) +
                           " bytes, header says " + std::to_string(length) + ")");
   }
-  if (fnv1a64(bytes.data() + kCheckpointHeaderBytes, bytes.size() - kCheckpointHeaderBytes) != hash) {
+  if (fnv1a64(bytes.data() + kCheckpointHeaderBytes, bytes.size() - kCheckpointHeaderBytes) !=
+      hash) {
     throw CheckpointError(path + ": corrupt checkpoint (checksum mismatch)");
   }
   try {

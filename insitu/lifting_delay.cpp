@@ -6,8 +6,8 @@
 
 namespace dustlift {
 
-double lifting_delay_distance(std::span<const double> x_centers, std::span<const double> heights, double shock_x,
-                              double layer_top, double lift_threshold) {
+double lifting_delay_distance(std::span<const double> x_centers, std::span<const double> heights,
+                              double shock_x, double layer_top, double lift_threshold) {
   if (x_centers.size() != heights.size())
     throw std::invalid_argument("lifting_delay_distance: one height per column centre needed");
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -16,7 +16,8 @@ inline constexpr double kDefaultLiftThreshold = 0.25e-3;
 /// lift_threshold (linear interpolation between the two columns around the crossing) and
 /// returns shock_x minus that x. Columns ahead of the shock are ignored. NaN when the
 /// surface nowhere behind the shock rises that high, or shock_x is not finite.
-double lifting_delay_distance(std::span<const double> x_centers, std::span<const double> heights, double shock_x,
-                              double layer_top, double lift_threshold = kDefaultLiftThreshold);
+double lifting_delay_distance(std::span<const double> x_centers, std::span<const double> heights,
+                              double shock_x, double layer_top,
+                              double lift_threshold = kDefaultLiftThreshold);
 
 }  // namespace dustlift

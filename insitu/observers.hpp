@@ -73,15 +73,15 @@ std::unique_ptr<Observer> make_probe_observer(ProbeOptions options);
 /// Series parcel_fronts: time_s, x_min_m, x_p01_m, x_p99_m, x_max_m at each output: the
 /// outermost parcels in x and the x below which 1 % and 99 % of the real particles lie
 /// (parcel_fronts.hpp). A particle curtain's upstream and downstream fronts.
-std::unique_ptr<Observer> make_parcel_fronts_observer();
+std::unique_ptr<Observer> make_parcel_fronts_observer(const Scene& scene);
 
 /// Series dust_cloud (docs/output.md): the lifted dust at each output (dust_cloud.hpp), its
 /// heights, temperatures, the explosible part of its concentration, and the distances of the
 /// first and the densest lifted grid column behind the shock (found as the shock-position
 /// observer finds it; NaN when `shock_along_x` is false or no shock is in the domain). The
 /// lifted shares divide by the layer's mass at the first output, kept in checkpoints.
-std::unique_ptr<Observer> make_dust_cloud_observer(DustCloudOptions options, ShockPositionOptions shock,
-                                                   bool shock_along_x);
+std::unique_ptr<Observer> make_dust_cloud_observer(DustCloudOptions options,
+                                                   ShockPositionOptions shock, bool shock_along_x);
 
 /// Window of the near-layer field series (paper Fig. 13).
 struct NearLayerOptions {

@@ -133,7 +133,7 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
     bands.sample_every_step = true;
     observers.push_back(make_band_force_observer(bands, band_arrays_of));
   }
-  if (out.parcel_fronts) observers.push_back(make_parcel_fronts_observer());
+  if (out.parcel_fronts) observers.push_back(make_parcel_fronts_observer(scene));
   if (out.dust_cloud) {
     DustCloudOptions cloud;
     cloud.layer_top = L.y_max;

@@ -22,4 +22,23 @@ struct ParcelFronts {
 ParcelFronts parcel_fronts(std::span<const double> x, std::span<const double> weight, double share,
                            std::vector<std::size_t>& order);
 
+/// A line of sight across the channel through a cloud of parcels (a schlieren or shadowgraph
+/// image through a square tube): per streamwise bin of width `bin`, the optical depth
+/// tau = n (pi d^2 / 4) depth of the real particles the bin holds (n their number per volume,
+/// averaged over the channel `height`), and the edges where tau falls below `optical_depth`.
+struct LineOfSight {
+  double depth = 0.0, optical_depth = 1.0, bin = 0.0, height = 0.0;  ///< m, 1, m, m
+};
+struct SightEdges {
+  /// m: the outermost x upstream and downstream where tau crosses the threshold (linear
+  /// between bin centres); NaN where no bin reaches it.
+  double upstream = 0.0, downstream = 0.0;
+};
+/// The edges of parcels at x (m), each with `n_real` real particles per metre of depth of
+/// diameter `diameter` (m). `tau` is scratch (per bin). Throws std::invalid_argument for
+/// mismatched sizes or a non-positive bin, height or depth.
+SightEdges line_of_sight_edges(std::span<const double> x, std::span<const double> n_real,
+                               std::span<const double> diameter, const LineOfSight& sight,
+                               std::vector<double>& tau);
+
 }  // namespace dustlift

@@ -1,10 +1,10 @@
 #include "insitu/pvd_collection.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace dustlift {
 
@@ -37,8 +37,7 @@ void PvdCollection::write() const {
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
     for (const auto& e : entries_)
-      out << fmt::format("    <DataSet timestep=\"{}\" part=\"0\" file=\"{}\"/>\n", e.time,
-                         e.file);
+      out << fmt::format("    <DataSet timestep=\"{}\" part=\"0\" file=\"{}\"/>\n", e.time, e.file);
     out << "  </Collection>\n</VTKFile>\n";
     out.flush();
     if (!out) throw std::runtime_error("error while writing " + temporary.string());

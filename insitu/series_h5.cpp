@@ -74,7 +74,8 @@ void write_fixed_string_attribute(hid_t object, const char* name, const std::str
   if (H5Aexists(object, name) > 0) {
     bool same_type = false;
     {
-      Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+      Handle attr(H5Aopen(object, name, H5P_DEFAULT), H5Aclose,
+                  std::string("open attribute ") + name);
       Handle stored(H5Aget_type(attr), H5Tclose, "attribute type");
       same_type = H5Tequal(stored, type) > 0;
       if (same_type) check(H5Awrite(attr, type, value.data()), "write attribute");
@@ -123,9 +124,9 @@ void write_column(hid_t group, const std::string& name, const std::string& unit,
     Handle space(H5Screate_simple(1, &initial, &unlimited), H5Sclose, "column space");
     Handle props(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "dataset properties");
     check(H5Pset_chunk(props, 1, &chunk), "chunk");
-    Handle created(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, props,
-                              H5P_DEFAULT),
-                   H5Dclose, "create dataset " + name);
+    Handle created(
+        H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, props, H5P_DEFAULT),
+        H5Dclose, "create dataset " + name);
     write_string_attribute(created, "units", unit);
   }
   Handle dataset(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
@@ -133,8 +134,7 @@ void write_column(hid_t group, const std::string& name, const std::string& unit,
   if (rows == 0) return;
   Handle file_space(H5Dget_space(dataset), H5Sclose, "dataset space");
   Handle memory_space(H5Screate_simple(1, &rows, nullptr), H5Sclose, "memory space");
-  check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, memory_space, file_space, H5P_DEFAULT,
-                 values.data()),
+  check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, memory_space, file_space, H5P_DEFAULT, values.data()),
         "write dataset " + name);
 }
 
@@ -187,7 +187,9 @@ SeriesTable read_series_h5(const std::string& path, const std::string& name) {
     Handle space(H5Dget_space(dataset), H5Sclose, "dataset space");
     const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
     std::vector<double> v(n);
-    if (n) check(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "read " + column);
+    if (n)
+      check(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+            "read " + column);
     columns.push_back({column, read_string_attribute(dataset, "units")});
     values.push_back(std::move(v));
   }
@@ -201,7 +203,8 @@ SeriesTable read_series_h5(const std::string& path, const std::string& name) {
   return table;
 }
 
-void write_series_h5(const std::string& path, const SeriesTable& table, const SeriesFileInfo* info) {
+void write_series_h5(const std::string& path, const SeriesTable& table,
+                     const SeriesFileInfo* info) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   Handle file(open_or_create(path), H5Fclose, "open or create " + path);
   const std::string group_name = "/" + table.name();
@@ -212,14 +215,15 @@ void write_series_h5(const std::string& path, const SeriesTable& table, const Se
     bool same_columns = false;
     {
       Handle group(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
-      same_columns = H5Aexists(group, "columns") > 0 && read_string_attribute(group, "columns") == names;
+      same_columns =
+          H5Aexists(group, "columns") > 0 && read_string_attribute(group, "columns") == names;
     }
     if (!same_columns) check(H5Ldelete(file, group_name.c_str(), H5P_DEFAULT), "delete group");
   }
   const bool created = H5Lexists(file, group_name.c_str(), H5P_DEFAULT) <= 0;
   if (created) {
-    Handle group(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                 "create group " + group_name);
+    Handle group(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                 H5Gclose, "create group " + group_name);
     write_string_attribute(group, "columns", names);
   }
   Handle group(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
@@ -246,28 +250,31 @@ void write_series_h5(const std::string& path, const SeriesTable& table, const Se
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
 }
 
-void write_string_column_h5(const std::string& path, const std::string& group, const std::string& name,
-                            const std::vector<std::string>& values) {
+void write_string_column_h5(const std::string& path, const std::string& group,
+                            const std::string& name, const std::vector<std::string>& values) {
   Handle file(open_or_create(path), H5Fclose, "open or create " + path);
   const std::string group_name = "/" + group;
   if (H5Lexists(file, group_name.c_str(), H5P_DEFAULT) <= 0) {
-    Handle created(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                   "create group " + group_name);
+    Handle created(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                   H5Gclose, "create group " + group_name);
   }
   Handle g(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + group_name);
-  if (H5Lexists(g, name.c_str(), H5P_DEFAULT) > 0) check(H5Ldelete(g, name.c_str(), H5P_DEFAULT), "delete " + name);
+  if (H5Lexists(g, name.c_str(), H5P_DEFAULT) > 0)
+    check(H5Ldelete(g, name.c_str(), H5P_DEFAULT), "delete " + name);
   std::size_t width = 1;
   for (const auto& v : values) width = std::max(width, v.size());
   std::string packed(width * values.size(), '\0');
-  for (std::size_t k = 0; k < values.size(); ++k) packed.replace(k * width, values[k].size(), values[k]);
+  for (std::size_t k = 0; k < values.size(); ++k)
+    packed.replace(k * width, values[k].size(), values[k]);
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
   check(H5Tset_size(type, width), "string size");
   check(H5Tset_strpad(type, H5T_STR_NULLPAD), "string pad");
   const hsize_t rows = values.size();
   Handle space(H5Screate_simple(1, &rows, nullptr), H5Sclose, "string column space");
-  Handle dataset(H5Dcreate2(g, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-                 "create dataset " + name);
-  if (rows > 0) check(H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "write " + name);
+  Handle dataset(H5Dcreate2(g, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                 H5Dclose, "create dataset " + name);
+  if (rows > 0)
+    check(H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "write " + name);
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
 }
 
@@ -276,15 +283,19 @@ std::vector<std::string> read_string_column_h5(const std::string& path, const st
   if (!std::filesystem::exists(path)) throw std::runtime_error("no file " + path);
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + path);
   const std::string dataset_path = "/" + group + "/" + name;
-  if (H5Lexists(file, ("/" + group).c_str(), H5P_DEFAULT) <= 0 || H5Lexists(file, dataset_path.c_str(), H5P_DEFAULT) <= 0)
+  if (H5Lexists(file, ("/" + group).c_str(), H5P_DEFAULT) <= 0 ||
+      H5Lexists(file, dataset_path.c_str(), H5P_DEFAULT) <= 0)
     throw std::runtime_error("no dataset " + dataset_path + " in " + path);
-  Handle dataset(H5Dopen2(file, dataset_path.c_str(), H5P_DEFAULT), H5Dclose, "open " + dataset_path);
+  Handle dataset(H5Dopen2(file, dataset_path.c_str(), H5P_DEFAULT), H5Dclose,
+                 "open " + dataset_path);
   Handle type(H5Dget_type(dataset), H5Tclose, "type of " + dataset_path);
   Handle space(H5Dget_space(dataset), H5Sclose, "space of " + dataset_path);
   const auto rows = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
   const std::size_t width = H5Tget_size(type);
   std::string packed(rows * width, '\0');
-  if (rows > 0) check(H5Dread(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()), "read " + dataset_path);
+  if (rows > 0)
+    check(H5Dread(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data()),
+          "read " + dataset_path);
   std::vector<std::string> values;
   for (std::size_t k = 0; k < rows; ++k) {
     std::string v = packed.substr(k * width, width);

@@ -1,9 +1,9 @@
 // Observers that turn gas fields into ready-to-plot series (surface height, shock
 // position). They read only the primitive fields: no GasSolver call, no VTK.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
@@ -40,9 +40,9 @@ class SurfaceHeightObserver final : public Observer {
       interior_values(grid, *view.primitives.alpha_g, alpha_p_, [](double ag) { return 1.0 - ag; });
     }
     const auto xc = interior_centers(grid.x());
-    const auto heights = dust_surface_height(grid.y().interior_faces(), alpha_p_,
-                                             static_cast<std::size_t>(grid.nx()),
-                                             options_.threshold);
+    const auto heights =
+        dust_surface_height(grid.y().interior_faces(), alpha_p_,
+                            static_cast<std::size_t>(grid.nx()), options_.threshold);
     for (std::size_t i = 0; i < heights.size(); ++i)
       if (!std::isnan(heights[i])) profile_.append_row(std::vector{view.time, xc[i], heights[i]});
     std::vector<double> row{view.time};

@@ -16,7 +16,8 @@ void restore_table(SeriesTable& table, const Snapshot& s, const std::string& pre
     const std::string name = prefix + table.name() + "/" + c.name;
     columns.push_back(snapshot_array(s.f64, name));
     if (columns.back().size() != columns.front().size())
-      throw SnapshotError("array '" + name + "' is not as long as the other columns of " + table.name());
+      throw SnapshotError("array '" + name + "' is not as long as the other columns of " +
+                          table.name());
   }
   table.assign(std::move(columns));
 }
@@ -32,14 +33,14 @@ bool restore_time(double& time, const Snapshot& s, const std::string& name) {
   return true;
 }
 
-void save_series_state(std::initializer_list<const SeriesTable*> tables, double last_time, bool written, Snapshot& s,
-                       const std::string& prefix) {
+void save_series_state(std::initializer_list<const SeriesTable*> tables, double last_time,
+                       bool written, Snapshot& s, const std::string& prefix) {
   for (const SeriesTable* t : tables) save_table(*t, s, prefix);
   save_time(last_time, written, s, prefix + "last_time");
 }
 
-bool restore_series_state(std::initializer_list<SeriesTable*> tables, double& last_time, const Snapshot& s,
-                          const std::string& prefix) {
+bool restore_series_state(std::initializer_list<SeriesTable*> tables, double& last_time,
+                          const Snapshot& s, const std::string& prefix) {
   for (SeriesTable* t : tables) restore_table(*t, s, prefix);
   return restore_time(last_time, s, prefix + "last_time");
 }

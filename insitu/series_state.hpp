@@ -21,10 +21,10 @@ bool restore_time(double& time, const Snapshot& s, const std::string& name);
 
 /// A series observer's whole state: its tables and the time it last wrote (written = false:
 /// not yet), under `prefix` (the time as <prefix>last_time).
-void save_series_state(std::initializer_list<const SeriesTable*> tables, double last_time, bool written, Snapshot& s,
-                       const std::string& prefix);
+void save_series_state(std::initializer_list<const SeriesTable*> tables, double last_time,
+                       bool written, Snapshot& s, const std::string& prefix);
 /// Takes it back; returns `written` and sets `last_time`.
-bool restore_series_state(std::initializer_list<SeriesTable*> tables, double& last_time, const Snapshot& s,
-                          const std::string& prefix);
+bool restore_series_state(std::initializer_list<SeriesTable*> tables, double& last_time,
+                          const Snapshot& s, const std::string& prefix);
 
 }  // namespace dustlift

@@ -1,32 +1,37 @@
 #include "insitu/series_table.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
-#include <fmt/format.h>
-
 namespace dustlift {
 
 bool is_identifier(const std::string& name) {
   if (name.empty() || std::isdigit(static_cast<unsigned char>(name.front()))) return false;
-  return std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
 }
 
 std::string csv_unit_token(const std::string& unit) {
   const auto word = [](std::string part) {
     std::string out;
     for (char c : part) {
-      if (c == ' ') out += '_';
-      else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') out += c;  // "^" and the like dropped
+      if (c == ' ')
+        out += '_';
+      else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
+        out += c;  // "^" and the like dropped
     }
     return out;
   };
   const auto slash = unit.find('/');
   if (slash == std::string::npos) return word(unit);
-  const std::string numerator = word(unit.substr(0, slash)), denominator = word(unit.substr(slash + 1));
+  const std::string numerator = word(unit.substr(0, slash)),
+                    denominator = word(unit.substr(slash + 1));
   return numerator == "1" ? "per_" + denominator : numerator + "_per_" + denominator;
 }
 
@@ -41,10 +46,12 @@ std::string number_in_identifier(double value) {
 SeriesTable::SeriesTable(std::string name, std::vector<SeriesColumn> columns)
     : name_(std::move(name)), columns_(std::move(columns)), data_(columns_.size()) {
   if (columns_.empty()) throw std::invalid_argument("SeriesTable '" + name_ + "': no columns");
-  if (!is_identifier(name_)) throw std::invalid_argument("SeriesTable '" + name_ + "': not an identifier");
+  if (!is_identifier(name_))
+    throw std::invalid_argument("SeriesTable '" + name_ + "': not an identifier");
   for (const auto& c : columns_) {
     if (!is_identifier(c.name))
-      throw std::invalid_argument("SeriesTable '" + name_ + "': column '" + c.name + "' is not an identifier");
+      throw std::invalid_argument("SeriesTable '" + name_ + "': column '" + c.name +
+                                  "' is not an identifier");
   }
 }
 
@@ -66,18 +73,20 @@ void SeriesTable::clear() {
 
 void SeriesTable::assign(std::vector<std::vector<double>> columns) {
   if (columns.size() != columns_.size())
-    throw std::invalid_argument(fmt::format("SeriesTable '{}': {} columns given, it has {}", name_, columns.size(),
-                                            columns_.size()));
+    throw std::invalid_argument(fmt::format("SeriesTable '{}': {} columns given, it has {}", name_,
+                                            columns.size(), columns_.size()));
   for (const auto& c : columns) {
     if (c.size() != columns.front().size())
-      throw std::invalid_argument(fmt::format("SeriesTable '{}': columns of different lengths", name_));
+      throw std::invalid_argument(
+          fmt::format("SeriesTable '{}': columns of different lengths", name_));
   }
   data_ = std::move(columns);
   csv_needs_rewrite_ = true;
 }
 
 SeriesSink::SeriesSink(std::string output_dir, SeriesFileInfo info)
-    : series_dir_((std::filesystem::path(output_dir) / "series").string()), info_(std::move(info)) {}
+    : series_dir_((std::filesystem::path(output_dir) / "series").string()),
+      info_(std::move(info)) {}
 
 std::string SeriesSink::csv_path(const SeriesTable& table) const {
   return (std::filesystem::path(series_dir_) / (table.name() + ".csv")).string();

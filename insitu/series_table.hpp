@@ -91,7 +91,8 @@ class SeriesSink {
 /// Replaces the whole group /<table.name()> of an HDF5 file with the table's columns
 /// (creating the file if missing or unreadable) and, with `info`, sets the root attributes
 /// code_version, command_line, scene and written_at (UTC, ISO 8601). Safe to call repeatedly.
-void write_series_h5(const std::string& path, const SeriesTable& table, const SeriesFileInfo* info = nullptr);
+void write_series_h5(const std::string& path, const SeriesTable& table,
+                     const SeriesFileInfo* info = nullptr);
 
 /// Reads group /<name> back (column order and units from its attributes). Throws
 /// std::runtime_error when the file or group is missing.
@@ -100,8 +101,8 @@ SeriesTable read_series_h5(const std::string& path, const std::string& name);
 /// Writes a 1-D dataset of fixed-length strings /<group>/<name> into an HDF5 file (created
 /// if missing; the group too), replacing a dataset of that name. For text columns next to a
 /// series, e.g. the run names and override values of a sweep summary.
-void write_string_column_h5(const std::string& path, const std::string& group, const std::string& name,
-                            const std::vector<std::string>& values);
+void write_string_column_h5(const std::string& path, const std::string& group,
+                            const std::string& name, const std::vector<std::string>& values);
 
 /// Reads such a dataset back. Throws std::runtime_error when it is missing.
 std::vector<std::string> read_string_column_h5(const std::string& path, const std::string& group,

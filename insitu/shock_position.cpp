@@ -34,8 +34,8 @@ double shock_position(std::span<const double> x_centers, std::span<const double>
   double best = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t j = 0; j < ny; ++j) {
     if (y_centers[j] < y_min) continue;
-    const double x = shock_position_on_row(x_centers, pressure.subspan(j * nx, nx), p_ambient,
-                                           threshold);
+    const double x =
+        shock_position_on_row(x_centers, pressure.subspan(j * nx, nx), p_ambient, threshold);
     if (!std::isnan(x) && (std::isnan(best) || x > best)) best = x;
   }
   return best;

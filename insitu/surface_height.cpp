@@ -9,7 +9,8 @@ namespace dustlift {
 std::vector<double> dust_surface_height(std::span<const double> y_faces,
                                         std::span<const double> alpha_p, std::size_t nx,
                                         double threshold) {
-  if (y_faces.size() < 2) throw std::invalid_argument("dust_surface_height: at least one cell (two faces) needed");
+  if (y_faces.size() < 2)
+    throw std::invalid_argument("dust_surface_height: at least one cell (two faces) needed");
   const std::size_t ny = y_faces.size() - 1;
   if (alpha_p.size() != nx * ny)
     throw std::invalid_argument("dust_surface_height: alpha_p must hold nx*ny values");

@@ -80,7 +80,7 @@ class VtkGasWriter final : public Observer {
   SoundSpeedFunction sound_speed_;
   std::unique_ptr<VtkSeriesFiles> files_;
   VtkSeriesFiles::State restored_;
-  GasCellArrays cells_;  // reused: no reallocation after the first output
+  GasCellArrays cells_;    // reused: no reallocation after the first output
   Field2D vorticity_;      // for a view without the run's derived fields (made by hand)
   Field2D concentration_;  // likewise
 };

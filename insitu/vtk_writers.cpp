@@ -59,7 +59,8 @@ void write_gas_vtr(const GasCellArrays& gas, const std::string& path, const VtkF
   if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + path);
 }
 
-void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path, const VtkFileInfo& info) {
+void write_parcels_vtp(const ParcelArraysView& parcels, const std::string& path,
+                       const VtkFileInfo& info) {
   parcels.check_sizes();
   vtkSmartPointer<vtkPolyData> poly = make_parcel_polydata(parcels);
   add_field_data(poly, info);
@@ -209,8 +210,8 @@ std::string VtkSeriesFiles::piece_path(int piece, const std::string& piece_exten
 std::string VtkSeriesFiles::next_path(double time) {
   const bool same_time = has_last_ && time == last_time_;
   const long long index = same_time ? next_index_ - 1 : next_index_;
-  pending_ = (std::filesystem::path("vtk") / numbered_file_name(prefix_, index, extension_))
-                 .string();
+  pending_ =
+      (std::filesystem::path("vtk") / numbered_file_name(prefix_, index, extension_)).string();
   return (std::filesystem::path(output_dir_) / pending_).string() + ".tmp";
 }
 
@@ -247,7 +248,8 @@ VtkSeriesFiles::State VtkSeriesFiles::read_state(const Snapshot& s, const std::s
   std::vector<PvdCollection::Entry> entries;
   std::size_t start = 0;
   for (double t : times) {
-    if (start > files.size()) throw SnapshotError("text '" + prefix + "files' lists fewer files than times");
+    if (start > files.size())
+      throw SnapshotError("text '" + prefix + "files' lists fewer files than times");
     const std::size_t end = std::min(files.find('\n', start), files.size());
     entries.push_back({t, files.substr(start, end - start)});
     start = end + 1;
@@ -266,12 +268,14 @@ void VtkSeriesFiles::resume(State state, const std::string& previous_output_dir)
   namespace fs = std::filesystem;
   const fs::path here = fs::absolute(output_dir_).lexically_normal();
   std::error_code ec;
-  const bool elsewhere = !previous_output_dir.empty() && !fs::equivalent(previous_output_dir, output_dir_, ec);
+  const bool elsewhere =
+      !previous_output_dir.empty() && !fs::equivalent(previous_output_dir, output_dir_, ec);
   std::vector<PvdCollection::Entry> entries = std::move(state.entries);
   if (elsewhere) {
     const fs::path there = fs::absolute(previous_output_dir).lexically_normal();
     for (auto& e : entries) {
-      if (fs::path(e.file).is_relative()) e.file = (there / e.file).lexically_normal().lexically_relative(here).string();
+      if (fs::path(e.file).is_relative())
+        e.file = (there / e.file).lexically_normal().lexically_relative(here).string();
     }
   }
   pvd_.assign(std::move(entries));
@@ -308,7 +312,8 @@ void VtkSeriesFiles::resume(State state, const std::string& previous_output_dir)
 ParcelSeriesWriter::ParcelSeriesWriter(const std::string& output_dir)
     : files_(output_dir, "parcels", "vtp") {}
 
-void ParcelSeriesWriter::write(const ParcelArraysView& parcels, double time, const VtkFileInfo& info) {
+void ParcelSeriesWriter::write(const ParcelArraysView& parcels, double time,
+                               const VtkFileInfo& info) {
   write_parcels_vtp(parcels, files_.next_path(time), info);
   files_.commit(time);
 }

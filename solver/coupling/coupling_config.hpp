@@ -24,7 +24,9 @@ struct CouplingConfig {
   /// Inviscid-unsteady (added-mass) force (Parmar et al. 2008); off by default (the paper
   /// leaves it out).
   bool added_mass = false;
-  aero::AddedMassVolumeFraction added_mass_volume_fraction = aero::AddedMassVolumeFraction::Zuber;
+  aero::AddedMassVolumeFraction added_mass_volume_fraction = aero::AddedMassVolumeFraction::Beguin;
+  /// D(rho u)/Dt of the added mass's fluid part: the resolved gas's, or -grad p.
+  aero::FluidAcceleration added_mass_fluid_acceleration = aero::FluidAcceleration::Resolved;
   bool rotation_torque = true;  ///< Dennis et al. (1980) friction torque
   double torque_stokes_below =
       0.0;  ///< Re_w below which Stokes' torque is used (0: fit only, as the paper)

@@ -36,8 +36,13 @@ void GasParticleCoupling::make_fields() {
     dpdx_ = Field2D(grid_);
     dpdy_ = Field2D(grid_);
   }
+  if (effects_.reads().momentum_gradient) {
+    for (Field2D* f : {&rho_u_, &rho_v_, &dx_rho_u_, &dy_rho_u_, &dx_rho_v_, &dy_rho_v_})
+      *f = Field2D(grid_);
+  }
   exchange_.assign(grid_.size_with_ghosts(), ExchangeCell{});
   implicit_.assign(grid_.size_with_ghosts(), ImplicitExchangeCell{});
+  derived_ = derived_fields();
   make_slab_fields();
 }
 
@@ -67,12 +72,21 @@ void GasParticleCoupling::set_slab(const Grid2D& whole, int first_column, GasHal
   slab_->halo = &halo;
   slab_->comm = &comm;
   // The fields a slab makes in every cell and exchanges (members: their addresses stay).
-  if (effects_.reads().rotation) slab_->derived_fields.push_back(&vorticity_);
-  if (effects_.reads().pressure_gradient) {
-    slab_->derived_fields.push_back(&dpdx_);
-    slab_->derived_fields.push_back(&dpdy_);
-  }
+  slab_->derived_fields = derived_fields();
   make_slab_fields();
+}
+
+std::vector<Field2D*> GasParticleCoupling::derived_fields() {
+  std::vector<Field2D*> f;
+  if (effects_.reads().rotation) f.push_back(&vorticity_);
+  if (effects_.reads().pressure_gradient) {
+    f.push_back(&dpdx_);
+    f.push_back(&dpdy_);
+  }
+  if (effects_.reads().momentum_gradient) {
+    for (Field2D* d : {&dx_rho_u_, &dy_rho_u_, &dx_rho_v_, &dy_rho_v_}) f.push_back(d);
+  }
+  return f;
 }
 
 void GasParticleCoupling::move_to_slab(const Grid2D& slab, int first_column, GasHalo& halo) {

@@ -149,6 +149,12 @@ class GasParticleCoupling {
   /// The vorticity and pressure gradient (what the models read) at the cells the sampled
   /// parcels' quads can read, in rows [j0, j1) and columns [0, i1).
   void derivatives_near_parcels(const GasPrimitives& gas, int j0, int j1, int i1);
+  /// rho u and rho v in the interior cells of rows [j0, j1), columns [0, i1).
+  void momentum_fields(const GasPrimitives& gas, int j0, int j1, int i1);
+  /// Every derived field the effects read in cells [i0, i1) of row j.
+  void derived_segment(const GasPrimitives& gas, int j, int i0, int i1);
+  /// The derived fields the effects read (their slab exchange list).
+  std::vector<Field2D*> derived_fields();
 
   // implicit_exchange.cpp
   /// Drag and heat exchange are stiff in a packed layer: the gas in a cell holds far less
@@ -180,11 +186,15 @@ class GasParticleCoupling {
   /// V_p of each size class, same expression (a polydisperse layer; empty: one class).
   std::vector<double> class_volume_;
   CouplingEffects effects_;
-  std::vector<ParcelColumn> stiff_sampled_;  ///< the sampled stiff coefficients (rank copies')
+  std::vector<ParcelColumn> stiff_sampled_;
+  std::vector<Field2D*> derived_;  ///< derived_fields(), kept (no allocation per step)  ///< the sampled stiff coefficients (rank copies')
   std::unique_ptr<GasProperties> props_;
   Columns col_;
 
   Field2D alpha_p_, alpha_g_, vorticity_, dpdx_, dpdy_;
+  /// The gas momentum rho u, rho v (cells the derivatives read) and its gradient, for the
+  /// resolved added mass.
+  Field2D rho_u_, rho_v_, dx_rho_u_, dy_rho_u_, dx_rho_v_, dy_rho_v_;
   /// Deposited exchange per cell (N/m^3, W/m^3; indexed as the grid's fields), side by side.
   struct ExchangeCell {
     double x = 0.0, y = 0.0, energy = 0.0;

@@ -13,14 +13,38 @@
 
 namespace dustlift {
 
+void GasParticleCoupling::momentum_fields(const GasPrimitives& g, int j0, int j1, int i1) {
+  // clang-format off
+#pragma omp parallel for schedule(static) if (static_cast<std::size_t>(j1 - j0) * i1 >= kParallelMinimum)
+  // clang-format on
+  for (int j = j0; j < j1; ++j) {
+    for (int i = 0; i < i1; ++i) {
+      rho_u_(i, j) = (*g.rho)(i, j) * (*g.u)(i, j);
+      rho_v_(i, j) = (*g.rho)(i, j) * (*g.v)(i, j);
+    }
+  }
+}
+
+void GasParticleCoupling::derived_segment(const GasPrimitives& g, int j, int i0, int i1) {
+  const GasReads& r = effects_.reads();
+  if (r.rotation) vorticity_z_segment(grid_, *g.u, *g.v, j, i0, i1, vorticity_);
+  if (r.pressure_gradient) gradient_segment(grid_, *g.p, j, i0, i1, dpdx_, dpdy_);
+  if (r.momentum_gradient) {
+    gradient_segment(grid_, rho_u_, j, i0, i1, dx_rho_u_, dy_rho_u_);
+    gradient_segment(grid_, rho_v_, j, i0, i1, dx_rho_v_, dy_rho_v_);
+  }
+}
+
 void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j0, int j1, int i1) {
-  const bool vorticity = effects_.reads().rotation, gradient = effects_.reads().pressure_gradient;
-  if (!vorticity && !gradient) return;
+  const GasReads& r = effects_.reads();
+  if (!r.rotation && !r.pressure_gradient && !r.momentum_gradient) return;
   const int nx = grid_.nx(), ny = grid_.ny();
   j0 = std::max(j0, 0);
   j1 = std::min(j1, ny);
   i1 = std::min(i1, nx);
   if (j1 <= j0 || i1 <= 0) return;
+  // The momentum's derivatives read it one cell around the cells they are made in.
+  if (r.momentum_gradient) momentum_fields(g, std::max(j0 - 1, 0), std::min(j1 + 1, ny), std::min(i1 + 1, nx));
   // A parcel's interpolation quad lies within one cell of the cell holding its centre, and
   // that cell has alpha_p > 0 (the last deposit was made at the current positions). So the
   // quads read only cells within one cell of a cell with alpha_p > 0: the derivatives are
@@ -48,8 +72,7 @@ void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j
       const int begin = i;
       while (i < i1 && (near[i] | near[i + 1] | near[i + 2]) != 0) ++i;
       if (i == begin) break;
-      if (vorticity) vorticity_z_segment(grid_, *g.u, *g.v, j, begin, i, vorticity_);
-      if (gradient) gradient_segment(grid_, *g.p, j, begin, i, dpdx_, dpdy_);
+      derived_segment(g, j, begin, i);
     }
   }
 }
@@ -70,25 +93,21 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   } else {
     i1 = 0;
   }
-  const bool vort = effects_.reads().rotation, pressure = effects_.reads().pressure_gradient;
+  const GasReads& reads = effects_.reads();
+  const bool vort = reads.rotation, pressure = reads.pressure_gradient,
+             momentum = reads.momentum_gradient;
   if (!slab_) {
     derivatives_near_parcels(g, j0, j1, i1);
-    if (vort) copy_edge_to_ghosts(grid_, vorticity_, j0, j1);
-    if (pressure) {
-      copy_edge_to_ghosts(grid_, dpdx_, j0, j1);
-      copy_edge_to_ghosts(grid_, dpdy_, j0, j1);
-    }
+    for (Field2D* f : derived_) copy_edge_to_ghosts(grid_, *f, j0, j1);
   } else {
     // A slab: every cell (the neighbours' parcels read the cut's columns too), then the cut's
     // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
     const int nx = grid_.nx();
+    if (momentum) momentum_fields(g, 0, grid_.ny(), nx);
     // clang-format off
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
     // clang-format on
-    for (int j = 0; j < grid_.ny(); ++j) {
-      if (vort) vorticity_z_segment(grid_, *g.u, *g.v, j, 0, nx, vorticity_);
-      if (pressure) gradient_segment(grid_, *g.p, j, 0, nx, dpdx_, dpdy_);
-    }
+    for (int j = 0; j < grid_.ny(); ++j) derived_segment(g, j, 0, nx);
     if (!slab_->derived_fields.empty())
       fill_ghosts(grid_, slab(), slab_->derived_fields, 0, grid_.ny());
     // Rank copies are sampled inside the slab (their samples are their owners', refreshed later).
@@ -107,6 +126,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   double* gT = ps.column(col_.gas_T).data();
   double* gp = ps.column(col_.gas_p).data();
   const double* real_d = ps.real_diameter.data();  // each parcel's own real particles
+  const StepContext step{ps.time()};
   // Batches of parcels: each is sampled, then every effect runs over the whole batch (one
   // virtual call per effect and batch). Dynamic scheduling: parcels in disturbed gas cost
   // several times those in uniform gas (whose stencils are uniform and whose drag needs no
@@ -123,7 +143,22 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
         slab_ ? InterpolationBatch<kBatch>(*slab_->whole, grid_, slab_->first_column)
               : InterpolationBatch<kBatch>(grid_);
     quads.push_points(x_sampled + k0, ps.y.data() + k0, count, cfg_.interpolation);
-    enum Sampled { kRho, kU, kV, kP, kT, kAlphaP, kVorticity, kDpdx, kDpdy, kFields };
+    enum Sampled {
+      kRho,
+      kU,
+      kV,
+      kP,
+      kT,
+      kAlphaP,
+      kVorticity,
+      kDpdx,
+      kDpdy,
+      kDxRhoU,
+      kDyRhoU,
+      kDxRhoV,
+      kDyRhoV,
+      kFields
+    };
     alignas(64) double value[kFields][kBatch];
     const Field2D* fields[kFields] = {g.rho,
                                       g.u,
@@ -133,7 +168,11 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
                                       &alpha_p_,
                                       vort ? &vorticity_ : nullptr,
                                       pressure ? &dpdx_ : nullptr,
-                                      pressure ? &dpdy_ : nullptr};
+                                      pressure ? &dpdy_ : nullptr,
+                                      momentum ? &dx_rho_u_ : nullptr,
+                                      momentum ? &dy_rho_u_ : nullptr,
+                                      momentum ? &dx_rho_v_ : nullptr,
+                                      momentum ? &dy_rho_v_ : nullptr};
     for (int f = 0; f < kFields; ++f) {
       if (fields[f] != nullptr) {
         quads.apply(*fields[f], value[f]);
@@ -161,12 +200,16 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       s.vorticity = value[kVorticity][q];
       s.dpdx = value[kDpdx][q];
       s.dpdy = value[kDpdy][q];
+      s.dx_rho_u = value[kDxRhoU][q];
+      s.dy_rho_u = value[kDyRhoU][q];
+      s.dx_rho_v = value[kDxRhoV][q];
+      s.dy_rho_v = value[kDyRhoV][q];
       in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d, 1.0 / ps.inv_mass_real[k]};
       const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
       in[q].slip = std::sqrt(sx * sx + sy * sy);
       in[q].re = s.rho * in[q].slip * d / s.mu;
     }
-    effects_.coefficients(in.data(), k0, count, ps);
+    effects_.coefficients(in.data(), k0, count, ps, step);
     for (std::size_t q = 0; q < count; ++q) {
       const std::size_t k = k0 + q;
       const GasSample& s = in[q].gas;

@@ -11,7 +11,14 @@ double added_mass_coefficient(double mach, double phi, AddedMassVolumeFraction c
   const double m = std::min(mach, 0.6);
   const double m2 = m * m;
   const double c_m = 0.5 * (1.0 + 1.8 * m2 + 7.6 * m2 * m2);
-  if (correction == AddedMassVolumeFraction::None) return c_m;
+  switch (correction) {
+    case AddedMassVolumeFraction::None:
+      return c_m;
+    case AddedMassVolumeFraction::Beguin:
+      return c_m * (1.0 + 0.68 * phi * phi);
+    case AddedMassVolumeFraction::Zuber:
+      break;
+  }
   return c_m * (1.0 + 2.0 * phi) / (1.0 - phi);
 }
 

@@ -19,15 +19,22 @@ constexpr std::array<std::string_view, kColumns> kColumnNames{
 
 double& field_of(PlacedParcel& p, int column) {
   switch (column) {
-    case X: return p.x;
-    case Y: return p.y;
-    case Diameter: return p.diameter;
-    case Vx: return p.vx;
-    case Vy: return p.vy;
-    case Omega: return p.omega;
+    case X:
+      return p.x;
+    case Y:
+      return p.y;
+    case Diameter:
+      return p.diameter;
+    case Vx:
+      return p.vx;
+    case Vy:
+      return p.vy;
+    case Omega:
+      return p.omega;
     case ParticleDiameter:
       return p.particle_diameter;
-    default: return p.temperature;
+    default:
+      return p.temperature;
   }
 }
 
@@ -57,7 +64,8 @@ std::optional<double> parse_number(std::string_view s) {
   double v = 0.0;
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size() || s.empty() || !std::isfinite(v)) return std::nullopt;
+  if (ec != std::errc() || end != s.data() + s.size() || s.empty() || !std::isfinite(v))
+    return std::nullopt;
   return v;
 }
 
@@ -65,7 +73,8 @@ class FileErrors {
  public:
   explicit FileErrors(std::string name) : name_(std::move(name)) {}
   [[noreturn]] void at(int line, int column, const std::string& what) const {
-    throw SceneError(name_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + what);
+    throw SceneError(name_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+                     what);
   }
 
  private:
@@ -79,21 +88,25 @@ std::string column_list() {
 }
 
 /// The column of each header field; x and y must be there, nothing twice or unknown.
-std::vector<int> parse_header(const std::vector<Field>& fields, int line_no, const FileErrors& error) {
+std::vector<int> parse_header(const std::vector<Field>& fields, int line_no,
+                              const FileErrors& error) {
   std::vector<int> layout;
   std::array<bool, kColumns> seen{};
   for (const Field& f : fields) {
     int c = 0;
     while (c < kColumns && kColumnNames[c] != f.text) ++c;
     if (c == kColumns) {
-      error.at(line_no, f.column, "unknown column '" + std::string(f.text) + "' (known: " + column_list() + ")");
+      error.at(line_no, f.column,
+               "unknown column '" + std::string(f.text) + "' (known: " + column_list() + ")");
     }
     if (seen[c]) error.at(line_no, f.column, "column '" + std::string(f.text) + "' appears twice");
     seen[c] = true;
     layout.push_back(c);
   }
   for (int c : {X, Y}) {
-    if (!seen[c]) error.at(line_no, 1, "missing column '" + std::string(kColumnNames[c]) + "' (x and y are required)");
+    if (!seen[c])
+      error.at(line_no, 1,
+               "missing column '" + std::string(kColumnNames[c]) + "' (x and y are required)");
   }
   return layout;
 }
@@ -108,7 +121,8 @@ std::string number_text(double v) {
 }  // namespace
 
 std::vector<PlacedParcel> parse_parcel_file(const std::string& text, const std::string& name,
-                                            const PlacedParcel& defaults, const ParcelFileLimits& limits) {
+                                            const PlacedParcel& defaults,
+                                            const ParcelFileLimits& limits) {
   const FileErrors error(name);
   std::vector<int> layout;  // column of each field, from the header
   int header_line = 0;
@@ -129,8 +143,9 @@ std::vector<PlacedParcel> parse_parcel_file(const std::string& text, const std::
     if (fields.size() != layout.size()) {
       const int column = fields.size() > layout.size() ? fields[layout.size()].column
                                                        : static_cast<int>(line.size()) + 1;
-      error.at(line_no, column, "expected " + std::to_string(layout.size()) + " fields as in the header (line " +
-                                    std::to_string(header_line) + "), found " + std::to_string(fields.size()));
+      error.at(line_no, column,
+               "expected " + std::to_string(layout.size()) + " fields as in the header (line " +
+                   std::to_string(header_line) + "), found " + std::to_string(fields.size()));
     }
     PlacedParcel p = defaults;
     // With a particle_diameter column each parcel holds whole particles of its own diameter.
@@ -141,25 +156,30 @@ std::vector<PlacedParcel> parse_parcel_file(const std::string& text, const std::
       const Field& f = fields[k];
       const std::string what = "column '" + std::string(kColumnNames[c]) + "': ";
       const auto v = parse_number(f.text);
-      if (!v) error.at(line_no, f.column, what + "'" + std::string(f.text) + "' is not a finite number");
+      if (!v)
+        error.at(line_no, f.column, what + "'" + std::string(f.text) + "' is not a finite number");
       if ((c == Diameter || c == Temperature || c == ParticleDiameter) && !(*v > 0.0)) {
         error.at(line_no, f.column, what + "must be > 0");
       }
       if (c == X && !(*v >= limits.x_min && *v <= limits.x_max)) {
-        error.at(line_no, f.column, what + "parcel centre outside the grid (x from " + number_text(limits.x_min) +
-                                        " to " + number_text(limits.x_max) + " m)");
+        error.at(line_no, f.column,
+                 what + "parcel centre outside the grid (x from " + number_text(limits.x_min) +
+                     " to " + number_text(limits.x_max) + " m)");
       }
       if (c == Y && !(*v >= limits.y_min && *v <= limits.y_max)) {
-        error.at(line_no, f.column, what + "parcel centre outside the grid (y from " + number_text(limits.y_min) +
-                                        " to " + number_text(limits.y_max) + " m)");
+        error.at(line_no, f.column,
+                 what + "parcel centre outside the grid (y from " + number_text(limits.y_min) +
+                     " to " + number_text(limits.y_max) + " m)");
       }
       if (c == Diameter && !own_particles && *v < limits.min_diameter) {
-        error.at(line_no, f.column, what + "smaller than particles.diameter (" + number_text(limits.min_diameter) +
-                                        " m): a parcel holds whole particles (eq. 11)");
+        error.at(line_no, f.column,
+                 what + "smaller than particles.diameter (" + number_text(limits.min_diameter) +
+                     " m): a parcel holds whole particles (eq. 11)");
       }
       if ((c == Diameter || c == ParticleDiameter) && *v > limits.max_diameter) {
-        error.at(line_no, f.column, what + "larger than the smallest grid cell (" + number_text(limits.max_diameter) +
-                                        " m), which breaks the unresolved-particle model (eqs. 12-16)");
+        error.at(line_no, f.column,
+                 what + "larger than the smallest grid cell (" + number_text(limits.max_diameter) +
+                     " m), which breaks the unresolved-particle model (eqs. 12-16)");
       }
       field_of(p, c) = *v;
     }

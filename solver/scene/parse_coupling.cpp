@@ -13,8 +13,8 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
   t.expect_keys({"two_way", "drag", "compressibility_correction", "volume_fraction_correction",
                  "volume_fraction_cap", "magnus", "magnus_coefficient", "magnus_convention",
                  "lun_liu", "pressure_force", "added_mass", "added_mass_volume_fraction",
-                 "rotation_torque", "torque_stokes_below", "heat_transfer", "interpolation",
-                 "influence_width", "max_volume_fraction"});
+                 "added_mass_fluid_acceleration", "rotation_torque", "torque_stokes_below",
+                 "heat_transfer", "interpolation", "influence_width", "max_volume_fraction"});
   if (!dem.enabled) {
     if (t.present() && !dem.switched_off)
       t.fail("two_way", "a [coupling] section needs [particles]");
@@ -24,9 +24,8 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
   c.drag = t.boolean("drag", c.drag);
   c.compressibility_correction =
       t.boolean("compressibility_correction", c.compressibility_correction);
-  const auto vf =
-      t.choice("volume_fraction_correction", "sangani",
-               {"sangani", "osnes", "tenneti", "linear", "none"});
+  const auto vf = t.choice("volume_fraction_correction", "sangani",
+                           {"sangani", "osnes", "tenneti", "linear", "none"});
   using Closure = aero::VolumeFractionCorrection::Kind;
   c.volume_fraction.kind = vf == "sangani"   ? Closure::Sangani
                            : vf == "osnes"   ? Closure::Osnes
@@ -43,9 +42,14 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
   c.lun_liu = t.boolean("lun_liu", c.lun_liu);
   c.pressure_force = t.boolean("pressure_force", c.pressure_force);
   c.added_mass = t.boolean("added_mass", c.added_mass);
-  const auto am = t.choice("added_mass_volume_fraction", "zuber", {"zuber", "none"});
-  c.added_mass_volume_fraction =
-      am == "zuber" ? aero::AddedMassVolumeFraction::Zuber : aero::AddedMassVolumeFraction::None;
+  const auto am = t.choice("added_mass_volume_fraction", "beguin", {"beguin", "zuber", "none"});
+  c.added_mass_volume_fraction = am == "beguin"  ? aero::AddedMassVolumeFraction::Beguin
+                                 : am == "zuber" ? aero::AddedMassVolumeFraction::Zuber
+                                                 : aero::AddedMassVolumeFraction::None;
+  const auto fa =
+      t.choice("added_mass_fluid_acceleration", "resolved", {"resolved", "pressure_gradient"});
+  c.added_mass_fluid_acceleration = fa == "resolved" ? aero::FluidAcceleration::Resolved
+                                                     : aero::FluidAcceleration::PressureGradient;
   c.rotation_torque = t.boolean("rotation_torque", c.rotation_torque);
   c.torque_stokes_below =
       t.number("torque_stokes_below", c.torque_stokes_below, Range::non_negative());

@@ -152,6 +152,23 @@ void parse_probes(TableReader& t, OutputConfig& out, const GridConfig& grid, boo
   }
 }
 
+/// [output.line_of_sight]: how the parcel_fronts series sees the cloud through the channel.
+void parse_line_of_sight(TableReader& t, OutputConfig& out, const GridConfig& grid) {
+  TableReader s = t.table("line_of_sight");
+  s.expect_keys({"depth", "optical_depth", "bin"});
+  if (!out.parcel_fronts) {
+    if (s.present()) s.fail("depth", "only used with output.parcel_fronts = true");
+    return;
+  }
+  OutputConfig::LineOfSight& l = out.line_of_sight;
+  l.depth = s.derived_number("depth", grid.y.end - grid.y.start,
+                             "grid.y (the channel height: a square channel)", Range::positive());
+  l.optical_depth = s.number("optical_depth", l.optical_depth, Range::positive());
+  l.bin = s.derived_number("bin", min_cell_width(grid), "grid (the smallest cell width)",
+                           Range::positive());
+  s.finish();
+}
+
 }  // namespace
 
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
@@ -159,8 +176,8 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   t.expect_keys({"interval", "vtk", "shock_threshold", "checkpoint_interval",
                  "checkpoint_wall_interval", "surface_threshold", "surface_stations",
                  "band_bin_width", "band_duration", "contact_window", "bands", "probes",
-                 "probe_interval", "parcel_fronts", "dust_cloud", "cloud_lift_height",
-                 "explosible_concentration", "cloud_edge_concentration"});
+                 "probe_interval", "parcel_fronts", "line_of_sight", "dust_cloud",
+                 "cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"});
   out.interval = t.number("interval", out.interval, Range::non_negative());
   out.vtk = t.boolean("vtk", out.vtk);
   out.shock_threshold = t.number("shock_threshold", out.shock_threshold, Range::open(0.0, 10.0));
@@ -174,8 +191,8 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
     if (dem.switched_off) return;
     for (const char* key :
          {"surface_threshold", "surface_stations", "band_bin_width", "band_duration",
-          "contact_window", "bands", "parcel_fronts", "dust_cloud", "cloud_lift_height",
-          "explosible_concentration", "cloud_edge_concentration"}) {
+          "contact_window", "bands", "parcel_fronts", "line_of_sight", "dust_cloud",
+          "cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"}) {
       if (t.has(key)) t.fail(key, "only used with [particles]");
     }
     t.finish();
@@ -195,6 +212,7 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   out.contact_window = t.number("contact_window", out.contact_window, Range::positive());
   parse_bands(t, out, L);
   out.parcel_fronts = t.boolean("parcel_fronts", out.parcel_fronts);
+  parse_line_of_sight(t, out, grid);
   out.dust_cloud = t.boolean("dust_cloud", out.dust_cloud);
   if (!out.dust_cloud) {
     for (const char* key :

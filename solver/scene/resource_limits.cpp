@@ -1,9 +1,9 @@
 #include "solver/scene/resource_limits.hpp"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cmath>
-#include <fmt/format.h>
 
 namespace dustlift {
 
@@ -26,7 +26,8 @@ std::string format_bytes(double bytes) {
 std::string memory_shortfall(double cells, double parcels) {
   const double have = machine_memory_bytes(), need = estimated_run_bytes(cells, parcels);
   if (!(have > 0.0) || need <= 0.9 * have) return {};
-  return fmt::format("needs about {} of memory; this machine has {}", format_bytes(need), format_bytes(have));
+  return fmt::format("needs about {} of memory; this machine has {}", format_bytes(need),
+                     format_bytes(have));
 }
 
 }  // namespace dustlift

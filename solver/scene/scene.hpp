@@ -78,6 +78,12 @@ struct OutputConfig {
   std::vector<ProbeConfig> probes;
   double probe_interval = 0.0;  ///< s of simulated time between probe samples; 0: every step
   bool parcel_fronts = false;   ///< series parcel_fronts (a curtain's fronts) at each output
+  /// The fronts as a line of sight through the channel sees them (parcel_fronts.hpp).
+  struct LineOfSight {
+    double depth = 0.0;          ///< m, path through the cloud (default: the channel height)
+    double optical_depth = 1.0;  ///< the edge: where n (pi d^2 / 4) depth falls below this
+    double bin = 0.0;            ///< m, streamwise bins (default: the smallest cell width)
+  } line_of_sight;
   // The dust cloud (series dust_cloud, docs/output.md), at each output of a scene with particles.
   bool dust_cloud = true;
   /// m: a parcel counts as lifted when its centre is higher than this above the layer

@@ -158,7 +158,11 @@ constexpr SceneKeyDoc kDocs[] = {
     {"coupling.pressure_force", "", "the pressure-gradient force -V_p grad p"},
     {"coupling.added_mass", "", "the inviscid-unsteady (added-mass) force of Parmar et al."},
     {"coupling.added_mass_volume_fraction", "",
-     "Zuber's volume-fraction factor of the added mass, or none"},
+     "how C_M grows with the solid fraction: Beguin et al. 2016 (1 + 0.68 phi^2), Zuber 1964 "
+     "((1 + 2 phi)/(1 - phi)), or none"},
+    {"coupling.added_mass_fluid_acceleration", "",
+     "the gas's momentum rate D(rho u)/Dt in the added mass: the resolved gas's, or -grad p "
+     "(Ling et al. 2012, dilute clouds)"},
     {"coupling.rotation_torque", "",
      "the fluid torque on a spinning particle (Dennis, Singh & Ingham)"},
     {"coupling.torque_stokes_below", "1",
@@ -198,7 +202,18 @@ constexpr SceneKeyDoc kDocs[] = {
     {"output.probes.y", "m", "the point's y"},
     {"output.probes.fields", "", "what to record: p, rho, u, v, T, mach, alpha_p"},
     {"output.probe_interval", "s", "simulated time between probe samples (0: every step)"},
-    {"output.parcel_fronts", "", "series of the parcels' x-extent (a particle curtain's fronts)"},
+    {"output.parcel_fronts", "",
+     "series of the parcels' x-extent (a particle curtain's fronts) and of the force parts "
+     "summed over the particles"},
+    {"output.line_of_sight", "",
+     "how parcel_fronts sees the cloud across the channel, as a schlieren or shadowgraph image "
+     "through the tube does"},
+    {"output.line_of_sight.depth", "m",
+     "the path through the cloud along the line of sight (the tube's width)"},
+    {"output.line_of_sight.optical_depth", "1",
+     "the edge: where n (pi d^2 / 4) depth of the real particles falls below this (1: the light "
+     "dimmed to 1/e)"},
+    {"output.line_of_sight.bin", "m", "width of the streamwise bins the optical depth is made in"},
     {"output.dust_cloud", "",
      "series of the lifted dust cloud (mass, heights, explosible area, distances behind the "
      "shock)"},

@@ -67,7 +67,7 @@ double coefficient_of(CouplingEffect& e, const ModelInput& in, const char* colum
   ParcelSystem s(cfg);
   s.add_parcel(ParcelInit{});
   e.attach(s);
-  e.coefficients(&in, 0, 1, s);
+  e.coefficients(&in, 0, 1, s, StepContext{});
   return forcing_fixture::column(s, column);
 }
 

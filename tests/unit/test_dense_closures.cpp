@@ -1,8 +1,7 @@
-// The closures a shock over a dense particle cloud needs beyond the paper's: the added-mass
-// (inviscid-unsteady) force of Parmar et al. (2008) with Zuber's volume-fraction correction,
-// and the Tenneti et al. (2011) drag of dense random arrays. Each against its published
-// formula, written out here from the papers; the added mass's implicit sub-step against the
-// exact motion of a sphere accelerated by a uniform pressure gradient.
+// The drag closures of dense suspensions beyond the paper's: Tenneti et al. (2011) and Osnes et
+// al. (2023), each against its published formula written out here and independent evaluations,
+// both against Ergun's packed-bed law, and the info lines that say where a closure leaves its
+// range.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,107 +23,6 @@ using namespace dustlift;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-TEST(AddedMass, CoefficientIsParmarsMachFitTimesZubersFactor) {
-  using aero::AddedMassVolumeFraction;
-  // Incompressible sphere: C_M = 1/2.
-  EXPECT_DOUBLE_EQ(aero::added_mass_coefficient(0.0, 0.0, AddedMassVolumeFraction::Zuber), 0.5);
-  // Parmar et al. (2008): 1/2 (1 + 1.8 M^2 + 7.6 M^4) at M = 0.4: 1/2 (1 + 0.288 + 0.19456).
-  EXPECT_NEAR(aero::added_mass_coefficient(0.4, 0.0, AddedMassVolumeFraction::None), 0.5 * 1.48256,
-              1e-15);
-  // Held beyond M = 0.6 (the fit's range): 1/2 x 2.6330 (jCODE's hard-coded 2.633).
-  EXPECT_NEAR(aero::added_mass_coefficient(0.6, 0.0, AddedMassVolumeFraction::None), 0.5 * 2.63296,
-              1e-12);
-  EXPECT_EQ(aero::added_mass_coefficient(1.3, 0.0, AddedMassVolumeFraction::None),
-            aero::added_mass_coefficient(0.6, 0.0, AddedMassVolumeFraction::None));
-  // Zuber (1964): (1 + 2 phi) / (1 - phi); at the curtain's phi = 0.21: 1.42 / 0.79.
-  EXPECT_NEAR(aero::added_mass_coefficient(0.0, 0.21, AddedMassVolumeFraction::Zuber),
-              0.5 * 1.42 / 0.79, 1e-15);
-  EXPECT_EQ(aero::added_mass_coefficient(0.0, 0.21, AddedMassVolumeFraction::None), 0.5);
-}
-
-TEST(AddedMass, ModelCoefficientTimesSubstepPieceIsThePublishedForce) {
-  CouplingConfig c;
-  c.added_mass = true;
-  AddedMassEffect model(c);
-  ModelInput in;
-  in.gas = GasSample{.rho = 2.07,
-                     .u = 300.0,
-                     .v = 0.0,
-                     .c = 412.0,
-                     .alpha_g = 0.79,
-                     .dpdx = -3.0e7,
-                     .dpdy = 2.0e6};
-  const double d = 115e-6, m = 2520.0 * kPi / 6.0 * d * d * d;
-  in.parcel = ParcelAtSample{20.0, 0.0, 0.0, d, m};
-  in.slip = 280.0;
-  DemConfig cfg;
-  cfg.enabled = true;
-  ParcelSystem one(cfg);
-  one.add_parcel(ParcelInit{});
-  model.attach(one);
-  model.coefficients(&in, 0, 1, one);
-  struct {
-    double added_mass, inv_total_mass, added_mass_fx, added_mass_fy;
-  } out{forcing_fixture::column(one, "added_mass"), forcing_fixture::column(one, "inv_total_mass"),
-        forcing_fixture::column(one, "added_mass_gas_x"),
-        forcing_fixture::column(one, "added_mass_gas_y")};
-  const double c_m =
-      aero::added_mass_coefficient(280.0 / 412.0, 0.21, aero::AddedMassVolumeFraction::Zuber);
-  const double vp = kPi / 6.0 * d * d * d;
-  EXPECT_NEAR(out.added_mass, c_m * 2.07 * vp, 1e-15 * out.added_mass);
-  EXPECT_DOUBLE_EQ(out.inv_total_mass, 1.0 / (m + out.added_mass));
-  // At an acceleration a, F_g - m_a a is C_M V_p [D(rho u)/Dt - rho a] with the gas's momentum
-  // rate D(rho u)/Dt = -s grad p, s = alpha_g / (alpha_g + alpha_p C_M) (the gas carries the
-  // cloud's added mass).
-  const double share = 0.79 / (0.79 + 0.21 * c_m);
-  EXPECT_DOUBLE_EQ(aero::gas_acceleration_share(0.79, c_m), share);
-  EXPECT_DOUBLE_EQ(aero::gas_acceleration_share(1.0, c_m), 1.0);  // a single sphere: -grad p
-  const Vec2 a{1.5e5, -2.0e3};
-  const Vec2 f =
-      aero::added_mass_force_at({out.added_mass_fx, out.added_mass_fy}, out.added_mass, a);
-  const Vec2 published = aero::added_mass_force(c_m, d, 2.07, {3.0e7 * share, -2.0e6 * share}, a);
-  EXPECT_NEAR(f.x, published.x, 1e-12 * std::abs(published.x));
-  EXPECT_NEAR(f.y, published.y, 1e-12 * std::abs(published.y));
-}
-
-/// One parcel at rest in a frozen uniform pressure gradient, no drag: with the pressure force
-/// and the added mass, (m + m_a) dv/dt = -V_p (1 + C_M) grad p exactly (a sphere in an
-/// accelerating inviscid fluid), whatever the sub-steps.
-TEST(AddedMass, ImplicitSubstepsGiveTheExactAccelerationInAUniformGradient) {
-  DemConfig cfg;
-  cfg.domain.x_min = cfg.domain.y_min = 0.0;
-  cfg.domain.x_max = cfg.domain.y_max = 1.0;
-  cfg.domain.wall_bottom = false;
-  cfg.particle_diameter = cfg.parcel_diameter = 115e-6;
-  cfg.density = 2520.0;
-  ParcelSystem ps(cfg);
-  const double d = 115e-6, rho_p = 2520.0, rho_g = 2.07, grad_p = -3.0e7, c_m = 0.5;
-  ParcelInit p;
-  p.x = p.y = 0.5;
-  p.diameter = p.real_diameter = d;
-  p.density = rho_p;
-  ps.add_parcel(p);
-  CouplingConfig c = forcing_fixture::no_effects();
-  c.pressure_force = c.added_mass = true;
-  forcing_fixture::Forcing f(ps, c);
-  using forcing_fixture::column;
-  const double vp = kPi / 6.0 * d * d * d, m = rho_p * vp, m_a = c_m * rho_g * vp;
-  column(ps, "pressure_fx") = -vp * grad_p;
-  column(ps, "added_mass") = m_a;
-  column(ps, "added_mass_gas_x") = -c_m * vp * grad_p;
-  column(ps, "inv_total_mass") = 1.0 / (m + m_a);
-  const double t = 2e-6;
-  ps.advance(t);
-  const double a_exact = -vp * (1.0 + c_m) * grad_p / (m + m_a);
-  EXPECT_NEAR(ps.vx[0], a_exact * t, 1e-12 * a_exact * t);
-  // The added-mass force stored is F_g - m_a a, and the impulse exchanged is its integral.
-  const double f_am = -c_m * vp * grad_p - m_a * a_exact;
-  EXPECT_NEAR(column(ps, "added_mass_fx"), f_am, 1e-12 * std::abs(f_am));
-  EXPECT_NEAR(column(ps, "impulse_x"), f_am * t, 1e-12 * std::abs(f_am * t));
-  // Without the added mass the same gradient accelerates the bead by the pressure force alone.
-  EXPECT_GT(std::abs(a_exact), std::abs(-vp * grad_p / m));
-}
 
 /// Tenneti, Garg & Subramaniam (2011), eqs. as published: F = F_isol(Re_m)/(1-phi)^3 + F_phi +
 /// F_phiRe with Re_m = (1-phi) Re, F_isol = 1 + 0.15 Re_m^0.687, the total force 3 pi mu d (1-phi)
@@ -250,22 +148,6 @@ TEST(DenseDrag, InfoSaysWhereAClosureLeavesItsRange) {
   EXPECT_EQ(lines(Kind::Tenneti, curtain).size(), 2u);
 }
 
-TEST(TennetiDrag, AndAddedMassAreListedWhenOn) {
-  CouplingConfig c;
-  c.volume_fraction.kind = aero::VolumeFractionCorrection::Kind::Tenneti;
-  c.added_mass = true;
-  const CouplingEffects models(c);
-  EXPECT_TRUE(models.reads().pressure_gradient);
-  std::string all;
-  for (const auto& d : models.descriptions()) all += d + "\n";
-  EXPECT_NE(all.find("Tenneti"), std::string::npos) << all;
-  EXPECT_NE(all.find("added mass"), std::string::npos) << all;
-  CouplingConfig paper;
-  std::string paper_list;
-  for (const auto& d : CouplingEffects(paper).descriptions()) paper_list += d + "\n";
-  EXPECT_EQ(paper_list.find("added mass"), std::string::npos) << "off by default";
-}
-
 TEST(ParcelFronts, OutermostAndWeightedPercentilePoints) {
   const std::vector<double> x{0.3, 0.1, 0.5, 0.2, 0.4};
   const std::vector<double> w{1.0, 1.0, 1.0, 1.0, 96.0};
@@ -280,6 +162,33 @@ TEST(ParcelFronts, OutermostAndWeightedPercentilePoints) {
   EXPECT_EQ(g.x_low, 0.3);  // 0.1, 0.2, 0.3 hold 3 % of the weight
   EXPECT_THROW(parcel_fronts(std::vector<double>{}, std::vector<double>{}, 0.01, order),
                std::invalid_argument);
+}
+
+TEST(ParcelFronts, LineOfSightEdgesWhereTheOpticalDepthCrossesTheThreshold) {
+  // 1 mm bins through a 10 mm channel seen along 50 mm: one 100 um bead adds
+  // (pi/4) d^2 depth / (bin height) = 3.927e-5 to its bin's optical depth.
+  const LineOfSight sight{0.05, 1.0, 1e-3, 0.01};
+  const double per_bead = 0.25 * kPi * 1e-8 * 0.05 / (1e-3 * 0.01);
+  const std::vector<double> x{0.0002, 0.0007, 0.0015, 0.0025};
+  const std::vector<double> n{25000.0, 25000.0, 20000.0, 10000.0};
+  const std::vector<double> d(4, 100e-6);
+  std::vector<double> scratch;
+  const SightEdges e = line_of_sight_edges(x, n, d, sight, scratch);
+  const double t0 = 50000.0 * per_bead, t1 = 20000.0 * per_bead;  // bins [0, 1) and [1, 2) mm
+  ASSERT_GT(t0, 1.0);
+  ASSERT_LT(t1, 1.0);
+  EXPECT_NEAR(e.upstream, 0.0005 - 0.001 * (t0 - 1.0) / t0, 1e-15);
+  EXPECT_NEAR(e.downstream, 0.0005 + 0.001 * (t0 - 1.0) / (t0 - t1), 1e-15);
+  // The same parcels in another order give the same edges; a thinner threshold reaches further.
+  const std::vector<double> xr(x.rbegin(), x.rend()), nr(n.rbegin(), n.rend());
+  const SightEdges r = line_of_sight_edges(xr, nr, d, sight, scratch);
+  EXPECT_EQ(r.upstream, e.upstream);
+  EXPECT_EQ(r.downstream, e.downstream);
+  const SightEdges thin = line_of_sight_edges(x, n, d, {0.05, 0.3, 1e-3, 0.01}, scratch);
+  EXPECT_GT(thin.downstream, e.downstream);
+  // Nothing dense enough: no edge.
+  EXPECT_TRUE(
+      std::isnan(line_of_sight_edges(x, n, d, {0.05, 100.0, 1e-3, 0.01}, scratch).upstream));
 }
 
 }  // namespace

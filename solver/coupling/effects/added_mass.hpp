@@ -1,7 +1,11 @@
 #pragma once
 // The inviscid-unsteady (added-mass) force (laws/added_mass.hpp) as an effect: each sub-step
 // solves (m + m_a) dv/dt = F + F_g with the added mass m_a = C_M rho_g V_p and the fluid part
-// F_g = C_M V_p D(rho_g u)/Dt, and the force F_g - m_a dv/dt is exchanged with the gas like drag.
+// F_g = C_M V_p [D(rho_g u)/Dt - v d(rho_g)/dt|_p], and the force F_g - m_a dv/dt is exchanged
+// with the gas like drag. The gas's momentum rate D(rho u)/Dt is the resolved flow's: the
+// sampled rho u's rate along the parcel's path since its last sample, plus (u - v) . grad(rho u)
+// (`resolved`), made implicit in a cloud the gas feels; or Ling et al. (2012)'s -grad p
+// (`pressure_gradient`, a dilute cloud's approximation). docs/coupling.md gives every choice.
 #include <string>
 
 #include "solver/core/vec2.hpp"
@@ -13,23 +17,14 @@ namespace dustlift {
 
 struct CouplingConfig;
 
-class AddedMassEffect final : public BatchedEffect<AddedMassEffect> {
+class AddedMassEffect final : public CouplingEffect {
  public:
   explicit AddedMassEffect(const CouplingConfig& c);
   std::string description() const override;
-  GasReads reads() const override { return {.pressure_gradient = true}; }
+  GasReads reads() const override;
   void attach(ParcelTable& t) override;
-
-  struct Columns {
-    double *added_mass, *fluid_x, *fluid_y, *inv_total_mass;
-  };
-  Columns columns(ParcelTable& t) const {
-    return {t.column(added_mass_).data(), t.column(fluid_x_).data(), t.column(fluid_y_).data(),
-            t.column(inv_total_mass_).data()};
-  }
-  /// m_a = C_M rho_g V_p, F_g = C_M V_p D(rho u)/Dt and 1 / (m + m_a) at the step's gas and
-  /// slip (Ma = slip / c, phi = 1 - alpha_g).
-  void coefficient(const ModelInput& in, std::size_t k, Columns& out) const;
+  void coefficients(const ModelInput* in, std::size_t k0, std::size_t n, ParcelTable& t,
+                    const StepContext& step) const override;
 
   /// The sub-step: the acceleration with the added mass, then the force at it.
   struct Substep : SubstepRoles, StoresForce {
@@ -51,15 +46,22 @@ class AddedMassEffect final : public BatchedEffect<AddedMassEffect> {
     }
   };
   Substep substep(ParcelTable& t, const FrozenGas&) const {
-    const Columns c = columns(t);
-    return {{},           {t.column(fx_).data(), t.column(fy_).data()},
-            c.added_mass, c.fluid_x,
-            c.fluid_y,    c.inv_total_mass};
+    return {{},
+            {t.column(fx_).data(), t.column(fy_).data()},
+            t.column(added_mass_).data(),
+            t.column(fluid_x_).data(),
+            t.column(fluid_y_).data(),
+            t.column(inv_total_mass_).data()};
   }
 
  private:
   aero::AddedMassVolumeFraction correction_;
+  aero::FluidAcceleration acceleration_;
+  bool two_way_;
   ParcelColumn added_mass_, fluid_x_, fluid_y_, inv_total_mass_, fx_, fy_;
+  /// The resolved rate's memory (kept in checkpoints): rho u, rho v and rho at the parcel's
+  /// last sample and its time (0 before the first), and the rate used then.
+  ParcelColumn rho_u_, rho_v_, rho_, sampled_at_, sampled_, rate_x_, rate_y_;
 };
 
 }  // namespace dustlift

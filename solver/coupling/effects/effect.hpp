@@ -29,6 +29,8 @@ struct GasSample {
   double alpha_g = 1.0;
   double vorticity = 0.0;  ///< omega_z = dv/dx - du/dy
   double dpdx = 0.0, dpdy = 0.0;
+  /// grad(rho u) and grad(rho v), the gas momentum's gradient
+  double dx_rho_u = 0.0, dy_rho_u = 0.0, dx_rho_v = 0.0, dy_rho_v = 0.0;
 };
 
 /// The parcel seen by the effects at the start of the CFD step.
@@ -51,9 +53,11 @@ struct ModelInput {
 struct GasReads {
   bool rotation = false;           ///< omega_z / 2 at the parcel (the vorticity field)
   bool pressure_gradient = false;  ///< grad p at the parcel (its field)
+  bool momentum_gradient = false;  ///< grad(rho u), grad(rho v) at the parcel (their fields)
   GasReads& operator|=(const GasReads& o) {
     rotation = rotation || o.rotation;
     pressure_gradient = pressure_gradient || o.pressure_gradient;
+    momentum_gradient = momentum_gradient || o.momentum_gradient;
     return *this;
   }
 };
@@ -68,6 +72,11 @@ struct FrozenGas {
 /// as sampled and the column the sub-steps apply.
 struct StiffCoefficient {
   ParcelColumn sampled, applied;
+};
+
+/// What a CFD step's sampling knows besides the samples.
+struct StepContext {
+  double time = 0.0;  ///< s, at the step's start
 };
 
 /// What `dustlift info` knows of the flow a scene makes, to say where an effect's law leaves
@@ -89,7 +98,7 @@ class CouplingEffect {
   virtual void attach(ParcelTable& table) = 0;
   /// The coefficients of parcels [k0, k0 + n), whose samples are in[0 .. n).
   virtual void coefficients(const ModelInput* in, std::size_t k0, std::size_t n,
-                            ParcelTable& table) const = 0;
+                            ParcelTable& table, const StepContext& step) const = 0;
   /// The momentum or heat exchange coefficient the implicit exchange scales, if any.
   virtual std::optional<StiffCoefficient> stiff_momentum() const { return std::nullopt; }
   virtual std::optional<StiffCoefficient> stiff_heat() const { return std::nullopt; }
@@ -102,8 +111,8 @@ class CouplingEffect {
 template <class Model>
 class BatchedEffect : public CouplingEffect {
  public:
-  void coefficients(const ModelInput* in, std::size_t k0, std::size_t n,
-                    ParcelTable& table) const final {
+  void coefficients(const ModelInput* in, std::size_t k0, std::size_t n, ParcelTable& table,
+                    const StepContext&) const final {
     const Model& m = static_cast<const Model&>(*this);
     auto out = m.columns(table);
     for (std::size_t q = 0; q < n; ++q) m.coefficient(in[q], k0 + q, out);

@@ -33,8 +33,9 @@ class CouplingEffects {
   /// Attaches every active effect's columns.
   void attach(ParcelTable& table);
   /// Every effect's coefficients for parcels [k0, k0 + n) (one virtual call per effect).
-  void coefficients(const ModelInput* in, std::size_t k0, std::size_t n, ParcelTable& t) const {
-    for (const auto& e : effects_) e->coefficients(in, k0, n, t);
+  void coefficients(const ModelInput* in, std::size_t k0, std::size_t n, ParcelTable& t,
+                    const StepContext& step) const {
+    for (const auto& e : effects_) e->coefficients(in, k0, n, t, step);
   }
   /// The coefficients the implicit exchange scales (none when no effect exchanges that;
   /// known after attach).
