@@ -215,13 +215,13 @@ def dust_cloud(series, out):
                  % (width * 1e3, quantum), fontsize=9)
     ax.legend(fontsize=7)
     ax = axes[3]
-    ax.plot(t, series["entrainment_rate_kg_per_m_s"] * 1e3, "k.-", label="leaving the layer (lift height)")
+    ax.plot(t, series["entrainment_rate_kg_per_m_s"], "k.-", label="leaving the layer (lift height)")
     for name in series:
         if name.startswith("flux_at_h"):
             height = name[len("flux_at_h"):-len("_kg_per_m_s")].replace("p", ".")
-            ax.plot(t, series[name] * 1e3, "--", marker=".", label="through %g mm" % (float(height) * 1e3))
-    ax.set_ylabel("rate [g/(m s)]")
-    ax.set_title("Entrainment: net dust mass rising through each level per second (between outputs)")
+            ax.plot(t, series[name], "--", marker=".", label="through %g mm" % (float(height) * 1e3))
+    ax.set_ylabel("rate [kg/(m s)]")
+    ax.set_title("Entrainment: net mass rising through each level (between outputs)")
     ax.legend(fontsize=7)
     ax = axes[4]
     ax.plot(t, series["lifted_temperature_max_K"], "k-", label="largest")
@@ -260,10 +260,11 @@ def dust_entrainment(series, out):
         axes[1].plot(xi, series["height_max_m"][rows] * 1e3, "-", color=colour, label=label)
         axes[1].plot(xi, series["height_p90_m"][rows] * 1e3, ":", color=colour)
     axes[0].set_ylabel("entrainment rate [kg/(m$^2$ s)]")
-    axes[0].set_title("Mass leaving the layer per metre of layer and second (where it started)")
+    axes[0].set_title("Mass leaving the layer per metre of layer and second (where it started)", fontsize=10)
     axes[0].legend(fontsize=7)
     axes[1].set_ylabel("height above layer top [mm]")
-    axes[1].set_title("Dispersion height: highest lifted parcel (solid), 90 % of the lifted mass (dotted)")
+    axes[1].set_title("Dispersion height: highest lifted parcel (solid), 90 % of the lifted mass (dotted)",
+                      fontsize=10)
     axes[1].set_xlabel("distance behind the shock [mm]")
     for a in axes:
         a.grid(alpha=0.3)

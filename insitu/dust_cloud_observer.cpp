@@ -6,6 +6,7 @@
 // through the heights and the cloud's height, against the distance behind the shock.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -220,7 +221,13 @@ class DustCloudObserver final : public Observer {
     }
     return m;
   }
-  static std::size_t shock_column() { return 1 + 7 + 6; }  // time, 7 lifted, 6 before shock_x
+  std::size_t shock_column() const {
+    const auto& c = table_.columns();
+    return static_cast<std::size_t>(
+        std::find_if(c.begin(), c.end(),
+                     [](const SeriesColumn& k) { return k.name == "shock_x"; }) -
+        c.begin());
+  }
   void append_histogram(double time, const FilteredCloud& f) {
     for (int k = 0; k < kHistogramBins; ++k) {
       const auto b = static_cast<std::size_t>(k);
