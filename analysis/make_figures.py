@@ -15,7 +15,13 @@ into OUTDIR/figures/ whatever the present series allow:
   magnus_inputs_<band>.png     relative, particle and gas rotation (Fig. 12 style)
   dust_cloud.png               the lifted dust against time: mass and share (per size class
                                too), heights holding 50/90/99 % of it and the cloud top,
-                               the explosible area, temperatures, distances behind the shock
+                               the mass and area inside the explosible band of the filtered
+                               concentration (fines too), the entrainment rate and the fluxes
+                               through the heights, temperatures, distances behind the shock
+  dust_entrainment.png         entrainment rate per metre of layer and the cloud's height
+                               against the distance behind the shock, one curve per output
+  dust_concentration_histogram.png  lifted mass per filtered-concentration bin at a few
+                               outputs, the explosible band shaded
 A gas-only run has only shock_position. Exits 1 if OUTDIR/series holds no series.
 """
 import argparse
@@ -165,9 +171,20 @@ def magnus_inputs(series, out, band):
     return save(fig, out, "magnus_inputs_%s.png" % band)
 
 
+def cloud_settings(outdir):
+    """The explosible band [lower, upper] (kg/m^3) of OUTDIR/scene.resolved.toml (the
+    defaults when it is missing)."""
+    try:
+        with open(os.path.join(outdir, "scene.resolved.toml"), "rb") as f:
+            out = tomllib.load(f).get("output", {})
+    except (OSError, tomllib.TOMLDecodeError):
+        out = {}
+    return float(out.get("explosible_lower", 0.05)), float(out.get("explosible_upper", 2.0))
+
+
 def dust_cloud(series, out):
     t = series["time_s"] * 1e3
-    fig, axes = plt.subplots(5, 1, figsize=(7, 13), sharex=True)
+    fig, axes = plt.subplots(6, 1, figsize=(7, 15.5), sharex=True)
     ax = axes[0]
     ax.plot(t, series["lifted_mass_kg_per_m"] * 1e3, "k-", label="all sizes")
     classes = sorted({n.split("_")[0] for n in series if n.startswith("class")})
@@ -187,16 +204,32 @@ def dust_cloud(series, out):
     ax.set_title("How high the cloud reaches")
     ax.legend(fontsize=7)
     ax = axes[2]
-    ax.plot(t, series["explosible_area_m2"] * 1e6, "k.-")
-    ax.set_ylabel("area [mm$^2$]")
-    ax.set_title("Explosible area: cells above the layer at or over the explosible concentration")
+    ax.plot(t, series["explosible_mass_kg_per_m"] * 1e3, "k.-", label="all sizes")
+    ax.plot(t, series["fines_explosible_mass_kg_per_m"] * 1e3, ".--", color="tab:green", label="fines")
+    ax.set_ylabel("mass [g per m of span]")
+    area = ax.twinx()
+    area.plot(t, series["explosible_area_m2"] * 1e6, color="tab:red", lw=0.8)
+    area.set_ylabel("area [mm$^2$]", color="tab:red")
+    width, quantum = series["filter_width_m"][-1], series["concentration_quantum_kg_per_m3"][-1]
+    ax.set_title("Inside the explosible band (filtered on %.3g mm cells; one parcel = %.3g kg/m$^3$)"
+                 % (width * 1e3, quantum), fontsize=9)
+    ax.legend(fontsize=7)
     ax = axes[3]
+    ax.plot(t, series["entrainment_rate_kg_per_m_s"], "k.-", label="leaving the layer (lift height)")
+    for name in series:
+        if name.startswith("flux_at_h"):
+            height = name[len("flux_at_h"):-len("_kg_per_m_s")].replace("p", ".")
+            ax.plot(t, series[name], "--", marker=".", label="through %g mm" % (float(height) * 1e3))
+    ax.set_ylabel("rate [kg/(m s)]")
+    ax.set_title("Entrainment: net mass rising through each level (between outputs)")
+    ax.legend(fontsize=7)
+    ax = axes[4]
     ax.plot(t, series["lifted_temperature_max_K"], "k-", label="largest")
     ax.plot(t, series["lifted_temperature_mean_K"], "k--", label="mass-weighted mean")
     ax.set_ylabel("temperature [K]")
     ax.set_title("Temperature of the lifted dust")
     ax.legend(fontsize=7)
-    ax = axes[4]
+    ax = axes[5]
     ax.plot(t, series["first_lifted_behind_shock_m"] * 1e3, "k-", label="first lifted column", marker=".")
     ax.plot(t, series["densest_lifted_behind_shock_m"] * 1e3, "k--", label="densest lifted column", marker=".")
     ax.set_ylabel("distance behind the shock [mm]")
@@ -206,6 +239,55 @@ def dust_cloud(series, out):
     for a in axes:
         a.grid(alpha=0.3)
     return save(fig, out, "dust_cloud.png")
+
+
+def output_times(series, count):
+    """Up to `count` of the series' distinct times, evenly spread, the last included."""
+    times = np.unique(series["time_s"])
+    if len(times) <= count:
+        return times
+    return times[np.linspace(0, len(times) - 1, count).round().astype(int)]
+
+
+def dust_entrainment(series, out):
+    fig, axes = plt.subplots(2, 1, figsize=(7, 8), sharex=True)
+    colours = plt.cm.viridis(np.linspace(0.0, 0.9, 6))
+    for colour, time in zip(colours, output_times(series, 6)):
+        rows = series["time_s"] == time
+        xi = series["distance_behind_shock_m"][rows] * 1e3
+        label = "t = %.3g ms" % (time * 1e3)
+        axes[0].plot(xi, series["entrainment_rate_kg_per_m2_s"][rows], ".-", color=colour, label=label)
+        axes[1].plot(xi, series["height_max_m"][rows] * 1e3, "-", color=colour, label=label)
+        axes[1].plot(xi, series["height_p90_m"][rows] * 1e3, ":", color=colour)
+    axes[0].set_ylabel("entrainment rate [kg/(m$^2$ s)]")
+    axes[0].set_title("Mass leaving the layer per metre of layer and second (where it started)", fontsize=10)
+    axes[0].legend(fontsize=7)
+    axes[1].set_ylabel("height above layer top [mm]")
+    axes[1].set_title("Dispersion height: highest lifted parcel (solid), 90 % of the lifted mass (dotted)",
+                      fontsize=10)
+    axes[1].set_xlabel("distance behind the shock [mm]")
+    for a in axes:
+        a.grid(alpha=0.3)
+        a.axvline(0.0, color="grey", lw=0.8)
+    return save(fig, out, "dust_entrainment.png")
+
+
+def dust_concentration_histogram(series, out, band):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    colours = plt.cm.viridis(np.linspace(0.0, 0.9, 4))
+    for colour, time in zip(colours, output_times(series, 4)):
+        rows = series["time_s"] == time
+        lo, hi = series["concentration_low_kg_per_m3"][rows], series["concentration_high_kg_per_m3"][rows]
+        mass = series["mass_kg_per_m"][rows] * 1e3
+        ax.stairs(mass, np.append(lo, hi[-1]), color=colour, label="t = %.3g ms" % (time * 1e3))
+    ax.axvspan(band[0], band[1], color="tab:orange", alpha=0.2, label="explosible band")
+    ax.set_xscale("log")
+    ax.set_xlabel("filtered dust concentration [kg/m$^3$]")
+    ax.set_ylabel("lifted mass [g per m of span]")
+    ax.set_title("Lifted mass by the concentration of its filter cell")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    return save(fig, out, "dust_concentration_histogram.png")
 
 
 def save(fig, out, name):
@@ -244,6 +326,10 @@ def main(argv):
             written.append(surface_stations(series, out, layer_top(args.outdir)))
         elif name == "dust_cloud":
             written.append(dust_cloud(series, out))
+        elif name == "dust_entrainment":
+            written.append(dust_entrainment(series, out))
+        elif name == "dust_concentration_histogram":
+            written.append(dust_concentration_histogram(series, out, cloud_settings(args.outdir)))
         elif name.startswith("forces_"):
             band = name[len("forces_"):]
             written.append(forces(series, out, band))

@@ -5,8 +5,9 @@ Usage: /usr/bin/python3 analysis/plot_cloud_study.py SWEEPDIR [--out FILE] [--ta
 
 Reads SWEEPDIR/summary.csv (the runs and their varied keys) and each run's
 series/dust_cloud.csv, and draws against time, one curve per run: the lifted share of the
-layer, the heights under which 90 % of the lifted mass lies, the explosible area and the
-distances of the first and the densest lifted column behind the shock. Writes SWEEPDIR/dust_cloud.png
+layer, the heights under which 90 % of the lifted mass lies, the lifted mass inside the
+explosible band of the filtered concentration, and the distances of the first and the
+densest lifted column behind the shock. Writes SWEEPDIR/dust_cloud.png
 (or --out) and prints a Markdown table of each run's cloud at its last output (also written
 to --table when given). Exits 1 when no run has a dust-cloud series.
 """
@@ -54,14 +55,14 @@ def main(argv):
         colour = "C%d" % k
         axes[0, 0].plot(t, s["lifted_share_1"] * 100.0, ".-", color=colour, label=label)
         axes[0, 1].plot(t, s["height_p90_m"] * 1e3, ".-", color=colour, label=label)
-        axes[1, 0].plot(t, s["explosible_area_m2"] * 1e6, ".-", color=colour, label=label)
+        axes[1, 0].plot(t, s["explosible_mass_kg_per_m"] * 1e3, ".-", color=colour, label=label)
         axes[1, 1].plot(t, s["first_lifted_behind_shock_m"] * 1e3, ".-", color=colour,
                         label=label + ": first lifted column")
         axes[1, 1].plot(t, s["densest_lifted_behind_shock_m"] * 1e3, ".--", color=colour,
                         label=label + ": densest lifted column")
     titles = [("Lifted share of the layer's mass", "lifted share [%]"),
               ("Height holding 90 % of the lifted mass", "height above layer top [mm]"),
-              ("Area at or above the explosible concentration", "area [mm$^2$]"),
+              ("Lifted mass inside the explosible band (filtered concentration)", "mass [g per m of span]"),
               ("Lifted columns behind the shock", "distance behind the shock [mm]")]
     for ax, (title, ylabel) in zip(axes.flat, titles):
         ax.set_title(title)
@@ -78,14 +79,18 @@ def main(argv):
     print("wrote", out)
 
     lines = ["| run | t [ms] | lifted [g/m] | share [%] | h50 / h90 / h99 [mm] | cloud top [mm] | "
-             "explosible area [mm²] | lifted T max / mean [K] | first / densest lifted column behind shock [mm] |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "explosible mass [g/m] / area [mm²] (filter [mm]) | entrainment rate [kg/(m s)] | "
+             "lifted T max / mean [K] | first / densest lifted column behind shock [mm] |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for row, s in runs:
         k = -1
-        lines.append("| %s | %.3f | %.3g | %.3g | %.3g / %.3g / %.3g | %.3g | %.3g | %.1f / %.1f | %.3g / %.3g |" % (
+        lines.append("| %s | %.3f | %.3g | %.3g | %.3g / %.3g / %.3g | %.3g | %.3g / %.3g (%.3g) | %.3g "
+                     "| %.1f / %.1f | %.3g / %.3g |" % (
             label_of(row, keys), s["time_s"][k] * 1e3, s["lifted_mass_kg_per_m"][k] * 1e3,
             s["lifted_share_1"][k] * 100.0, s["height_p50_m"][k] * 1e3, s["height_p90_m"][k] * 1e3,
-            s["height_p99_m"][k] * 1e3, s["cloud_top_m"][k] * 1e3, s["explosible_area_m2"][k] * 1e6,
+            s["height_p99_m"][k] * 1e3, s["cloud_top_m"][k] * 1e3, s["explosible_mass_kg_per_m"][k] * 1e3,
+            s["explosible_area_m2"][k] * 1e6, s["filter_width_m"][k] * 1e3,
+            s["entrainment_rate_kg_per_m_s"][k],
             s["lifted_temperature_max_K"][k], s["lifted_temperature_mean_K"][k],
             s["first_lifted_behind_shock_m"][k] * 1e3, s["densest_lifted_behind_shock_m"][k] * 1e3))
     table = "\n".join(lines)

@@ -1,14 +1,26 @@
 #pragma once
 // The lifted dust cloud of a run, as a dust-explosion study reads it: how much dust mass is in
 // the air, how high, at what concentration, how hot and how far behind the shock. A secondary
-// explosion needs dust suspended above its minimum explosible concentration where the
-// shock-heated gas or a flame reaches it (Eckhoff 2003, Dust Explosions in the Process
-// Industries, ch. 1). VTK-free; the dust-cloud observer (series dust_cloud) calls it at outputs.
+// explosion needs dust suspended inside its explosible range, between the minimum explosible
+// concentration and an upper limit, where the shock-heated gas or a flame reaches it (Eckhoff
+// 2003, Dust Explosions in the Process Industries, ch. 1). VTK-free; the dust-cloud observer
+// (series dust_cloud, dust_concentration_histogram) calls it at outputs.
+//
+// The concentration that decides what is explosible is filtered: the lifted parcels' mass is
+// counted in the square analysis cells of side `filter_width` (docs/dust-cloud.md). One parcel
+// alone in a cell makes the concentration's quantum m_parcel / width^2, the step by which the
+// filtered concentration changes; a width at which it is well below the lower limit lets the
+// band's edges be resolved.
 //
 // Units: 2-D, per metre of depth. Masses are kg per metre of span; areas m^2 in the x-y plane.
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
+
+#include "solver/scene/cloud_filter.hpp"
 
 namespace dustlift {
 
@@ -18,10 +30,12 @@ struct CloudParcels {
   std::span<const double> mass;         ///< kg/m, the parcel's (all its real particles)
   std::span<const double> temperature;  ///< K
   std::span<const double> size_class;   ///< 0 .. classes - 1 (empty: every parcel in class 0)
+  /// m, the real particles' diameter (empty: no parcel counts as fines)
+  std::span<const double> particle_diameter = {};
 };
 
-/// The dust concentration on the interior cells (x fastest, nx * ny values, kg/m^3) and the
-/// cell faces.
+/// The dust concentration on the flow grid's interior cells (x fastest, nx * ny values,
+/// kg/m^3) and the cell faces: what the cloud's top is read from.
 struct CloudField {
   std::span<const double> x_faces;        ///< m, nx + 1
   std::span<const double> y_faces;        ///< m, ny + 1
@@ -29,11 +43,20 @@ struct CloudField {
 };
 
 struct DustCloudOptions {
-  double layer_top = 0.0;                  ///< m, the initial layer's top (heights count from it)
-  double lift_height = 0.0;                ///< m, a parcel is lifted when y > layer_top + this
-  double explosible_concentration = 0.05;  ///< kg/m^3
-  double edge_concentration = 0.001;       ///< kg/m^3, the cloud top's level
-  int classes = 1;                         ///< size classes of the layer
+  double layer_top = 0.0;            ///< m, the initial layer's top (heights count from it)
+  double lift_height = 0.0;          ///< m, a parcel is lifted when y > layer_top + this
+  double top_concentration = 0.001;  ///< kg/m^3, the cloud top's level (flow grid)
+  int classes = 1;                   ///< size classes of the layer
+  /// The filtered concentration: square cells of this side (m), aligned with `x_origin` and
+  /// the layer top, over the channel x in [x_start, x_end], y in [layer_top, y_end].
+  double filter_width = 0.0;
+  double x_origin = 0.0;              ///< m, a cell edge (the layer's upstream end)
+  double x_start = 0.0, x_end = 0.0;  ///< m, the channel along x
+  double y_end = 0.0;                 ///< m, the channel's top
+  double explosible_lower = 0.05;     ///< kg/m^3, the band's lower edge (inclusive)
+  double explosible_upper = 2.0;      ///< kg/m^3, the band's upper edge (inclusive)
+  double fines_diameter = 75e-6;      ///< m, particles smaller than this are fines
+  std::vector<double> heights;        ///< m above layer_top: mass above each is reported
 };
 
 /// The lifted part of one size class (or of all of them).
@@ -47,25 +70,88 @@ struct LiftedDust {
   double temperature_mean = 0.0;  ///< K, mass-weighted over the lifted parcels (NaN when none)
 };
 
+/// Bins of one width along an axis, edges at origin + k width, clipped to [lo, hi] (the
+/// filter's cells, the entrainment's stretches of channel). A value outside falls in the
+/// nearest end bin.
+struct AlignedBins {
+  double origin, width, lo_edge, hi_edge;
+  std::ptrdiff_t first = 0;  ///< index of the first bin counted from origin
+  std::size_t count = 0;
+  /// Throws std::invalid_argument unless width > 0 and hi > lo.
+  AlignedBins(double origin, double width, double lo, double hi);
+  double lo(std::size_t i) const;  ///< m, bin i's lower edge (clipped)
+  double hi(std::size_t i) const;  ///< m, bin i's upper edge (clipped)
+  double length(std::size_t i) const { return hi(i) - lo(i); }
+  std::size_t bin_of(double v) const;
+};
+
+/// The concentration histogram's bins: log-spaced, kHistogramPerDecade per decade from
+/// kHistogramLow to kHistogramHigh kg/m^3; a cell below the first bin counts in it, one
+/// above the last in the last.
+inline constexpr double kHistogramLow = 1e-4, kHistogramHigh = 1e4;
+inline constexpr int kHistogramPerDecade = 10;
+inline constexpr int kHistogramBins = 8 * kHistogramPerDecade;
+/// Edge k (0 .. kHistogramBins) of the histogram, kg/m^3.
+double histogram_edge(int k);
+
+/// The filtered concentration's cells and what the band makes of them.
+struct FilteredCloud {
+  double quantum = 0.0;  ///< kg/m^3, the largest parcel's mass / filter_width^2
+  /// Cells that hold lifted dust: their area (m^2) and mean concentration (kg/m^3)
+  double cloud_area = 0.0, cloud_concentration = 0.0;
+  /// The cells whose filtered concentration lies in [lower, upper]: their lifted mass (kg/m),
+  /// area (m^2), mean concentration (mass / area; NaN when none) and x-extent (NaN when none)
+  double explosible_mass = 0.0, explosible_area = 0.0, explosible_concentration = 0.0;
+  double explosible_x_min = 0.0, explosible_x_max = 0.0;
+  /// The fines (particle diameter below fines_diameter): their mass in the band's cells and
+  /// their mean concentration there (NaN when no cell is in the band), and in all the lifted
+  /// dust and over the cloud's cells (NaN when nothing is lifted)
+  double fines_explosible_mass = 0.0, fines_explosible_concentration = 0.0;
+  double fines_lifted_mass = 0.0, fines_cloud_concentration = 0.0;
+  /// Per histogram bin: the lifted mass and the fines' mass (kg/m) and the area (m^2) of the
+  /// cells whose concentration falls in it
+  std::array<double, kHistogramBins> histogram_mass{}, histogram_fines{}, histogram_area{};
+};
+
 struct DustCloud {
   LiftedDust all;
   std::vector<LiftedDust> per_class;  ///< one per size class
-  /// m above the layer top: the upper face of the highest cell row above it where the
-  /// concentration reaches the edge level (0 when none does)
+  /// m above the layer top: the upper face of the highest flow-grid cell row above it where
+  /// the concentration reaches top_concentration (0 when none does)
   double cloud_top = 0.0;
-  /// m^2 of the cells above the layer top whose concentration reaches the explosible level,
-  /// and their extent in x (NaN when none)
-  double explosible_area = 0.0;
-  double explosible_x_min = 0.0, explosible_x_max = 0.0;
+  FilteredCloud filtered;
+  std::vector<double> mass_above;  ///< kg/m, above layer_top + heights[k]
   /// m, centre of the most downstream grid column holding lifted dust, and of the column
   /// holding the most lifted mass (NaN when nothing is lifted)
   double first_lifted_x = 0.0, densest_lifted_x = 0.0;
 };
 
-/// The cloud of `parcels` over `field`. `column_mass` is scratch. Throws
-/// std::invalid_argument when the spans' sizes disagree or a size class is out of range.
+/// Scratch the cloud reuses between outputs.
+struct DustCloudScratch {
+  std::vector<double> column_mass, cell_mass, cell_fines;
+};
+
+/// The cloud of `parcels` over `field`. Throws std::invalid_argument when the spans' sizes
+/// disagree, a size class is out of range, or the filter has no cells.
 DustCloud dust_cloud(const CloudParcels& parcels, const CloudField& field,
-                     const DustCloudOptions& options, std::vector<double>& column_mass);
+                     const DustCloudOptions& options, DustCloudScratch& scratch);
+
+/// The filtered concentration's quantum: one parcel of `parcel_mass` (kg/m) alone in a cell
+/// of side `width` (m), kg/m^3.
+inline double concentration_quantum(double parcel_mass, double width) {
+  return parcel_mass / (width * width);
+}
+
+/// Whether a quantum is well below the lower limit: at most the share the default filter
+/// width makes (kFilterQuantumShare, a tenth).
+inline bool quantum_resolves(double quantum, double lower) {
+  return quantum <= kFilterQuantumShare * lower * (1.0 + 1e-9);
+}
+
+/// A warning for the run's log and `dustlift info` when `quantum` (kg/m^3) is not well below
+/// the band's lower limit, saying what width would resolve it and whether the channel
+/// allows it; empty when it is.
+std::string quantum_warning(double quantum, const DustCloudOptions& options);
 
 /// The smallest h such that the weights of the values at or below h reach `share` of their
 /// total (values and weights paired; NaN when there are none). `order` is scratch.

@@ -1,13 +1,19 @@
 // Series dust_cloud: the lifted cloud at each output (dust_cloud.hpp), with the shock's
-// position for the distances behind it, and per size class when the layer holds several.
+// position for the distances behind it, its filtered concentration's explosible band, the
+// entrainment rate and fluxes (entrainment.hpp), and per size class when the layer holds
+// several. Series dust_concentration_histogram: the lifted mass per filtered-concentration
+// bin. Series dust_entrainment: per stretch of channel, the entrainment rate, the fluxes
+// through the heights and the cloud's height, against the distance behind the shock.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 
 #include "insitu/dust_cloud.hpp"
+#include "insitu/entrainment.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
 #include "insitu/series_state.hpp"
@@ -20,6 +26,8 @@
 namespace dustlift {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 /// The columns of one class's lifted dust, named with `prefix` ("" for the whole cloud).
 std::vector<SeriesColumn> lifted_columns(const std::string& prefix) {
   return {{prefix + "lifted_mass", "kg/m"},
@@ -31,22 +39,61 @@ std::vector<SeriesColumn> lifted_columns(const std::string& prefix) {
           {prefix + "lifted_temperature_mean", "K"}};
 }
 
-std::vector<SeriesColumn> cloud_columns(int classes) {
+std::string height_name(double h) {
+  return fmt::format("h{}", number_in_identifier(h));
+}
+
+std::vector<SeriesColumn> cloud_columns(int classes, const std::vector<double>& heights) {
   std::vector<SeriesColumn> c{{"time", "s"}};
   for (const SeriesColumn& l : lifted_columns("")) c.push_back(l);
-  for (const SeriesColumn& l : std::vector<SeriesColumn>{{"resting_mass", "kg/m"},
-                                                         {"layer_mass", "kg/m"},
-                                                         {"cloud_top", "m"},
-                                                         {"explosible_area", "m^2"},
-                                                         {"explosible_x_min", "m"},
-                                                         {"explosible_x_max", "m"},
-                                                         {"shock_x", "m"},
-                                                         {"first_lifted_behind_shock", "m"},
-                                                         {"densest_lifted_behind_shock", "m"}})
+  for (const SeriesColumn& l :
+       std::vector<SeriesColumn>{{"resting_mass", "kg/m"},
+                                 {"layer_mass", "kg/m"},
+                                 {"cloud_top", "m"},
+                                 {"explosible_area", "m^2"},
+                                 {"explosible_x_min", "m"},
+                                 {"explosible_x_max", "m"},
+                                 {"shock_x", "m"},
+                                 {"first_lifted_behind_shock", "m"},
+                                 {"densest_lifted_behind_shock", "m"},
+                                 {"explosible_mass", "kg/m"},
+                                 {"explosible_mean_concentration", "kg/m^3"},
+                                 {"cloud_area", "m^2"},
+                                 {"cloud_mean_concentration", "kg/m^3"},
+                                 {"fines_lifted_mass", "kg/m"},
+                                 {"fines_cloud_mean_concentration", "kg/m^3"},
+                                 {"fines_explosible_mass", "kg/m"},
+                                 {"fines_explosible_mean_concentration", "kg/m^3"},
+                                 {"filter_width", "m"},
+                                 {"concentration_quantum", "kg/m^3"},
+                                 {"entrainment_rate", "kg/(m s)"}})
     c.push_back(l);
+  for (double h : heights) c.push_back({"mass_above_" + height_name(h), "kg/m"});
+  for (double h : heights) c.push_back({"flux_at_" + height_name(h), "kg/(m s)"});
   if (classes > 1)
     for (int k = 0; k < classes; ++k)
       for (const SeriesColumn& l : lifted_columns(fmt::format("class{}_", k))) c.push_back(l);
+  return c;
+}
+
+std::vector<SeriesColumn> histogram_columns() {
+  return {{"time", "s"},
+          {"concentration", "kg/m^3"},
+          {"concentration_low", "kg/m^3"},
+          {"concentration_high", "kg/m^3"},
+          {"mass", "kg/m"},
+          {"fines_mass", "kg/m"},
+          {"area", "m^2"}};
+}
+
+std::vector<SeriesColumn> entrainment_columns(const std::vector<double>& heights) {
+  std::vector<SeriesColumn> c{{"time", "s"},
+                              {"x", "m"},
+                              {"distance_behind_shock", "m"},
+                              {"entrainment_rate", "kg/(m^2 s)"}};
+  for (double h : heights) c.push_back({"flux_at_" + height_name(h), "kg/(m^2 s)"});
+  c.push_back({"height_p90", "m"});
+  c.push_back({"height_max", "m"});
   return c;
 }
 
@@ -57,12 +104,16 @@ void append_lifted(std::vector<double>& row, const LiftedDust& d, double layer_m
 
 class DustCloudObserver final : public Observer {
  public:
-  DustCloudObserver(DustCloudOptions options, ShockPositionOptions shock, bool shock_along_x)
-      : options_(options),
+  DustCloudObserver(DustCloudOptions options, EntrainmentOptions entrainment,
+                    ShockPositionOptions shock, bool shock_along_x)
+      : options_(std::move(options)),
         shock_(shock),
         shock_along_x_(shock_along_x),
-        table_("dust_cloud", cloud_columns(options.classes)),
-        layer_("dust_cloud_layer", layer_columns(options.classes)) {}
+        entrainment_(entrainment),
+        table_("dust_cloud", cloud_columns(options_.classes, options_.heights)),
+        layer_("dust_cloud_layer", layer_columns(options_.classes)),
+        histogram_("dust_concentration_histogram", histogram_columns()),
+        rates_("dust_entrainment", entrainment_columns(options_.heights)) {}
 
   unsigned output_reads() const override { return kReadsParcels | kReadsAlphaP | kReadsPressure; }
   void on_output(const StateView& view) override {
@@ -76,42 +127,78 @@ class DustCloudObserver final : public Observer {
     interior_values(grid, *view.primitives.p, pressure_);
     const std::vector<double> x_faces = grid.x().interior_faces(),
                               y_faces = grid.y().interior_faces();
-    const DustCloud cloud = dust_cloud({p.x, p.y, p.mass, p.temperature, p.size_class},
-                                       {x_faces, y_faces, concentration_}, options_, column_mass_);
-    double shock_x = std::numeric_limits<double>::quiet_NaN();
+    const DustCloud cloud =
+        dust_cloud({p.x, p.y, p.mass, p.temperature, p.size_class, p.real_diameter},
+                   {x_faces, y_faces, concentration_}, options_, scratch_);
+    const EntrainmentSample rates =
+        entrainment_.sample({p.id, p.x, p.y, p.x_initial, p.mass}, view.time);
+    double shock_x = kNaN;
     if (shock_along_x_)
       shock_x = shock_position(interior_centers(grid.x()), interior_centers(grid.y()), pressure_,
                                shock_.p_ambient, shock_.threshold, shock_.y_min);
+    warn_once(view, cloud.filtered.quantum);
 
     const double layer_mass = layer_.column(layer_.columns().size() - 1).front();
+    const FilteredCloud& f = cloud.filtered;
     std::vector<double> row{view.time};
     append_lifted(row, cloud.all, layer_mass);
-    row.insert(row.end(),
-               {cloud.all.resting_mass, layer_mass, cloud.cloud_top, cloud.explosible_area,
-                cloud.explosible_x_min, cloud.explosible_x_max, shock_x,
-                shock_x - cloud.first_lifted_x, shock_x - cloud.densest_lifted_x});
+    row.insert(row.end(), {cloud.all.resting_mass,
+                           layer_mass,
+                           cloud.cloud_top,
+                           f.explosible_area,
+                           f.explosible_x_min,
+                           f.explosible_x_max,
+                           shock_x,
+                           shock_x - cloud.first_lifted_x,
+                           shock_x - cloud.densest_lifted_x,
+                           f.explosible_mass,
+                           f.explosible_concentration,
+                           f.cloud_area,
+                           f.cloud_concentration,
+                           f.fines_lifted_mass,
+                           f.fines_cloud_concentration,
+                           f.fines_explosible_mass,
+                           f.fines_explosible_concentration,
+                           options_.filter_width,
+                           f.quantum,
+                           rates.lifted_rate});
+    row.insert(row.end(), cloud.mass_above.begin(), cloud.mass_above.end());
+    row.insert(row.end(), rates.height_rate.begin(), rates.height_rate.end());
     if (options_.classes > 1)
       for (int k = 0; k < options_.classes; ++k)
         append_lifted(row, cloud.per_class[static_cast<std::size_t>(k)],
                       layer_.column(static_cast<std::size_t>(k)).front());
+    // The rates are over the interval since the last output: the shock midway through it.
+    const double shock_mid =
+        table_.rows() > 0 ? 0.5 * (table_.column(shock_column()).back() + shock_x) : kNaN;
     table_.append_row(row);
+    append_histogram(view.time, f);
+    if (rates.has_rates) append_rates(view.time, shock_mid, rates);
     sampled_ = true;
     last_time_ = view.time;
     if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    sink_->write(table_);
+    write();
   }
 
   std::string state_key() const override { return "dust_cloud"; }
   void save_state(Snapshot& s, const std::string& prefix) const override {
-    save_series_state({&table_, &layer_}, last_time_, sampled_, s, prefix);
+    save_series_state({&table_, &layer_, &histogram_, &rates_}, last_time_, sampled_, s, prefix);
+    entrainment_.save(s, prefix);
   }
   void restore_state(const Snapshot& s, const std::string& prefix) override {
-    sampled_ = restore_series_state({&table_, &layer_}, last_time_, s, prefix);
+    sampled_ =
+        restore_series_state({&table_, &layer_, &histogram_, &rates_}, last_time_, s, prefix);
+    entrainment_.restore(s, prefix);
   }
   void on_resume(const StateView& view, const std::string&) override {
     if (!sampled_) return;
     if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    sink_->write(table_);
+    if (view.parcels != nullptr) {
+      double largest = 0.0;
+      for (double m : view.parcels->mass) largest = std::max(largest, m);
+      warn_once(view, concentration_quantum(largest, options_.filter_width));
+    }
+    write();
   }
 
  private:
@@ -134,23 +221,63 @@ class DustCloudObserver final : public Observer {
     }
     return m;
   }
+  std::size_t shock_column() const {
+    const auto& c = table_.columns();
+    return static_cast<std::size_t>(
+        std::find_if(c.begin(), c.end(),
+                     [](const SeriesColumn& k) { return k.name == "shock_x"; }) -
+        c.begin());
+  }
+  void append_histogram(double time, const FilteredCloud& f) {
+    for (int k = 0; k < kHistogramBins; ++k) {
+      const auto b = static_cast<std::size_t>(k);
+      const double lo = histogram_edge(k), hi = histogram_edge(k + 1);
+      histogram_.append_row(std::vector<double>{time, std::sqrt(lo * hi), lo, hi,
+                                                f.histogram_mass[b], f.histogram_fines[b],
+                                                f.histogram_area[b]});
+    }
+  }
+  void append_rates(double time, double shock_mid, const EntrainmentSample& r) {
+    std::vector<double> row;
+    for (std::size_t b = 0; b < r.bin_x.size(); ++b) {
+      row = {time, r.bin_x[b], shock_mid - r.bin_x[b], r.entrainment[b]};
+      for (const auto& flux : r.height_flux) row.push_back(flux[b]);
+      row.insert(row.end(), {r.height_p90[b], r.height_max[b]});
+      rates_.append_row(row);
+    }
+  }
+  void write() {
+    sink_->write(table_);
+    sink_->write(histogram_);
+    if (rates_.rows() > 0) sink_->write(rates_);
+  }
+  void warn_once(const StateView& view, double quantum) {
+    if (warned_) return;
+    warned_ = true;
+    const std::string text = quantum_warning(quantum, options_);
+    if (!text.empty() && view.log != nullptr) (*view.log)(text);
+  }
 
   DustCloudOptions options_;
   ShockPositionOptions shock_;
   bool shock_along_x_;
-  SeriesTable table_, layer_;
+  Entrainment entrainment_;
+  SeriesTable table_, layer_, histogram_, rates_;
   std::unique_ptr<SeriesSink> sink_;
   Field2D concentration_scratch_;
-  std::vector<double> concentration_, pressure_, column_mass_;
-  bool sampled_ = false;
+  std::vector<double> concentration_, pressure_;
+  DustCloudScratch scratch_;
+  bool sampled_ = false, warned_ = false;
   double last_time_ = 0.0;
 };
 
 }  // namespace
 
 std::unique_ptr<Observer> make_dust_cloud_observer(DustCloudOptions options,
+                                                   EntrainmentOptions entrainment,
                                                    ShockPositionOptions shock, bool shock_along_x) {
-  return std::make_unique<DustCloudObserver>(options, shock, shock_along_x);
+  return std::make_unique<DustCloudObserver>(std::move(options), std::move(entrainment), shock,
+                                             shock_along_x);
 }
 
 }  // namespace dustlift

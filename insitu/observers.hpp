@@ -7,6 +7,7 @@
 
 #include "insitu/band_average.hpp"
 #include "insitu/dust_cloud.hpp"
+#include "insitu/entrainment.hpp"
 #include "insitu/parcel_arrays.hpp"
 #include "solver/sim/observer.hpp"
 
@@ -76,11 +77,15 @@ std::unique_ptr<Observer> make_probe_observer(ProbeOptions options);
 std::unique_ptr<Observer> make_parcel_fronts_observer(const Scene& scene);
 
 /// Series dust_cloud (docs/output.md): the lifted dust at each output (dust_cloud.hpp), its
-/// heights, temperatures, the explosible part of its concentration, and the distances of the
-/// first and the densest lifted grid column behind the shock (found as the shock-position
-/// observer finds it; NaN when `shock_along_x` is false or no shock is in the domain). The
-/// lifted shares divide by the layer's mass at the first output, kept in checkpoints.
+/// heights, temperatures, its filtered concentration's explosible band, the entrainment rate
+/// and the fluxes through `heights` (entrainment.hpp), and the distances of the first and the
+/// densest lifted grid column behind the shock (found as the shock-position observer finds
+/// it; NaN when `shock_along_x` is false or no shock is in the domain). The lifted shares
+/// divide by the layer's mass at the first output, kept in checkpoints. Series
+/// dust_concentration_histogram (lifted mass per concentration bin) and dust_entrainment
+/// (per stretch of channel). Logs quantum_warning() once per run segment.
 std::unique_ptr<Observer> make_dust_cloud_observer(DustCloudOptions options,
+                                                   EntrainmentOptions entrainment,
                                                    ShockPositionOptions shock, bool shock_along_x);
 
 /// Window of the near-layer field series (paper Fig. 13).

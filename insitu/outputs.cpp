@@ -67,6 +67,39 @@ BandParcelsView band_arrays_of(const StateView& v) {
 
 }  // namespace
 
+DustCloudOptions dust_cloud_options(const Scene& scene) {
+  const OutputConfig& out = scene.output;
+  const LayerConfig& L = scene.particles.layer;
+  DustCloudOptions cloud;
+  cloud.layer_top = L.y_max;
+  cloud.lift_height = out.cloud_lift_height;
+  cloud.top_concentration = out.cloud_top_concentration;
+  cloud.classes = std::max<int>(1, static_cast<int>(scene.particles.size_classes.size()));
+  cloud.filter_width = out.cloud_filter_width;
+  cloud.x_origin = L.x_min;
+  cloud.x_start = scene.grid.x.start;
+  cloud.x_end = scene.grid.x.end;
+  cloud.y_end = scene.grid.y.end;
+  cloud.explosible_lower = out.explosible_lower;
+  cloud.explosible_upper = out.explosible_upper;
+  cloud.fines_diameter = out.fines_diameter;
+  cloud.heights = out.entrainment_heights;
+  return cloud;
+}
+
+EntrainmentOptions entrainment_options(const Scene& scene) {
+  const LayerConfig& L = scene.particles.layer;
+  EntrainmentOptions e;
+  e.layer_top = L.y_max;
+  e.lift_height = scene.output.cloud_lift_height;
+  e.heights = scene.output.entrainment_heights;
+  e.bin_width = scene.output.entrainment_bin_width;
+  e.x_origin = L.x_min;
+  e.x_start = scene.grid.x.start;
+  e.x_end = scene.grid.x.end;
+  return e;
+}
+
 std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
                                                              const std::string& output_dir,
                                                              bool piece_writers_only) {
@@ -134,15 +167,9 @@ std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
     observers.push_back(make_band_force_observer(bands, band_arrays_of));
   }
   if (out.parcel_fronts) observers.push_back(make_parcel_fronts_observer(scene));
-  if (out.dust_cloud) {
-    DustCloudOptions cloud;
-    cloud.layer_top = L.y_max;
-    cloud.lift_height = out.cloud_lift_height;
-    cloud.explosible_concentration = 1e-3 * out.explosible_concentration;  // g/m^3 -> kg/m^3
-    cloud.edge_concentration = 1e-3 * out.cloud_edge_concentration;
-    cloud.classes = std::max<int>(1, static_cast<int>(scene.particles.size_classes.size()));
-    observers.push_back(make_dust_cloud_observer(cloud, shock, rightward));
-  }
+  if (out.dust_cloud)
+    observers.push_back(make_dust_cloud_observer(dust_cloud_options(scene),
+                                                 entrainment_options(scene), shock, rightward));
   return observers;
 }
 

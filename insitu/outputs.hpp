@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "insitu/dust_cloud.hpp"
+#include "insitu/entrainment.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
 
@@ -15,5 +17,10 @@ namespace dustlift {
 std::vector<std::unique_ptr<Observer>> make_output_observers(const Scene& scene,
                                                              const std::string& output_dir,
                                                              bool piece_writers_only = false);
+
+/// The dust-cloud observer's settings from a scene with particles and output.dust_cloud (what
+/// `dustlift info` reports too).
+DustCloudOptions dust_cloud_options(const Scene& scene);
+EntrainmentOptions entrainment_options(const Scene& scene);
 
 }  // namespace dustlift

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "insitu/outputs.hpp"
 #include "solver/dem/layer_generator.hpp"
+#include "solver/dem/parcel_system.hpp"
 #include "solver/parallel/communicator.hpp"
 #include "solver/scene/resource_limits.hpp"
 
@@ -29,6 +31,27 @@ double estimated_steps(const Simulation& sim) {
   return std::ceil(sim.scene().run.end_time / dt);
 }
 
+namespace {
+
+/// The dust cloud's filtered concentration: its cells, its quantum against the explosible
+/// band, and the warning the run's log gives when the quantum does not resolve the band.
+void print_dust_cloud(const Scene& scene, const ParcelSystem& parcels) {
+  const DustCloudOptions o = dust_cloud_options(scene);
+  double largest = 0.0;
+  for (double m : parcels.mass) largest = std::max(largest, m);
+  const double quantum = concentration_quantum(largest, o.filter_width);
+  fmt::print(
+      "dust cloud: filtered concentration on {:.4g} m cells; quantum (the largest parcel, {:.4g} "
+      "kg/m, alone in a cell) {:.4g} kg/m^3 = {:.3g} % of the explosible band [{:g}, {:g}] "
+      "kg/m^3's lower edge\n",
+      o.filter_width, largest, quantum, 100.0 * quantum / o.explosible_lower, o.explosible_lower,
+      o.explosible_upper);
+  if (const std::string warning = quantum_warning(quantum, o); !warning.empty())
+    fmt::print("{}\n", warning);
+}
+
+}  // namespace
+
 void print_info(const Scene& scene, const Simulation& sim) {
   const Grid2D& g = sim.grid();
   fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
@@ -47,6 +70,7 @@ void print_info(const Scene& scene, const Simulation& sim) {
     fmt::print("{}\n", describe_layer(scene.particles));
     if (layer_settles(scene.particles.layer))
       fmt::print("{}\n", describe_bed(*parcels, scene.particles.layer));
+    if (scene.output.dust_cloud) print_dust_cloud(scene, *parcels);
   } else {
     fmt::print("parcels: 0 (gas only)\n");
   }

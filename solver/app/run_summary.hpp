@@ -29,7 +29,8 @@ inline const std::vector<SummaryCloudColumn> kSummaryCloudColumns{
     {"lifted_share", "cloud_lifted_share", "1"},
     {"height_p90", "cloud_height_p90", "m"},
     {"cloud_top", "cloud_top", "m"},
-    {"explosible_area", "cloud_explosible_area", "m^2"}};
+    {"explosible_area", "cloud_explosible_area", "m^2"},
+    {"explosible_mass", "cloud_explosible_mass", "kg/m"}};
 
 struct RunResults {
   double profile_time = 0.0;     ///< s, time of the last surface-height output (NaN: none)

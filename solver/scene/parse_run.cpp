@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "solver/scene/cloud_filter.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
 
@@ -169,15 +170,90 @@ void parse_line_of_sight(TableReader& t, OutputConfig& out, const GridConfig& gr
   s.finish();
 }
 
+void parse_dust_cloud(TableReader& t, OutputConfig& out, const DemConfig& dem,
+                      const GridConfig& grid) {
+  const LayerConfig& L = dem.layer;
+  out.cloud_lift_height =
+      t.derived_number("cloud_lift_height", dem.particle_diameter,
+                       "particles.diameter (one particle diameter)", Range::non_negative());
+  out.cloud_top_concentration =
+      t.number("cloud_top_concentration", out.cloud_top_concentration, Range::positive());
+  out.explosible_lower = t.number("explosible_lower", out.explosible_lower, Range::positive());
+  out.explosible_upper = t.number("explosible_upper", out.explosible_upper, Range::positive());
+  if (!(out.explosible_upper > out.explosible_lower))
+    t.fail("explosible_upper",
+           fmt::format("{:g} kg/m^3 must be greater than explosible_lower ({:g} kg/m^3): the "
+                       "explosible band is [explosible_lower, explosible_upper]",
+                       out.explosible_upper, out.explosible_lower));
+  // The channel above the layer: the filter's cells and the heights live there.
+  const double room = grid.y.end - L.y_max;
+  const double mass = largest_parcel_mass(dem);
+  out.cloud_filter_width = t.derived_number(
+      "cloud_filter_width", default_cloud_filter_width(mass, out.explosible_lower, room),
+      "the largest parcel's mass: one parcel alone in a cell is a tenth of explosible_lower, "
+      "at most the channel's height above the layer",
+      Range::positive());
+  out.fines_diameter = t.number("fines_diameter", out.fines_diameter, Range::positive());
+  std::vector<double> heights;
+  for (double h : {1e-3, 2e-3, 5e-3})
+    if (h < room) heights.push_back(h);
+  out.entrainment_heights = t.derived_number_list(
+      "entrainment_heights", heights, "1, 2 and 5 mm above the layer top, those inside the channel",
+      Range::positive());
+  for (std::size_t k = 0; k < out.entrainment_heights.size(); ++k) {
+    const double h = out.entrainment_heights[k];
+    if (!(h < room))
+      t.fail("entrainment_heights",
+             fmt::format("{:g} m is not inside the channel: heights count from the layer top "
+                         "(particles.layer.y_max) and must be below the {:g} m above it",
+                         h, room));
+    if (k > 0 && !(h > out.entrainment_heights[k - 1]))
+      t.fail("entrainment_heights", "the heights must increase");
+  }
+  if (out.entrainment_heights.size() > 16) t.fail("entrainment_heights", "at most 16 heights");
+  out.entrainment_bin_width =
+      t.derived_number("entrainment_bin_width", (L.x_max - L.x_min) / 40.0,
+                       "particles.layer (a fortieth of its length)", Range::positive());
+}
+
 }  // namespace
 
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
                   const GridConfig& grid) {
-  t.expect_keys({"interval", "vtk", "shock_threshold", "checkpoint_interval",
-                 "checkpoint_wall_interval", "surface_threshold", "surface_stations",
-                 "band_bin_width", "band_duration", "contact_window", "bands", "probes",
-                 "probe_interval", "parcel_fronts", "line_of_sight", "dust_cloud",
-                 "cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"});
+  // Replaced keys, in g/m^3 (the only keys not in SI units): refused, naming what replaces
+  // them, since the new keys would read the old values 1000 times too large.
+  if (t.has("explosible_concentration"))
+    t.fail("explosible_concentration",
+           "is replaced by explosible_lower and explosible_upper, the explosible band of the "
+           "filtered dust concentration in kg/m^3 (SI): 50 g/m^3 is explosible_lower = 0.05");
+  if (t.has("cloud_edge_concentration"))
+    t.fail("cloud_edge_concentration",
+           "is replaced by cloud_top_concentration in kg/m^3 (SI): 1 g/m^3 is "
+           "cloud_top_concentration = 0.001");
+  t.expect_keys({"interval",
+                 "vtk",
+                 "shock_threshold",
+                 "checkpoint_interval",
+                 "checkpoint_wall_interval",
+                 "surface_threshold",
+                 "surface_stations",
+                 "band_bin_width",
+                 "band_duration",
+                 "contact_window",
+                 "bands",
+                 "probes",
+                 "probe_interval",
+                 "parcel_fronts",
+                 "line_of_sight",
+                 "dust_cloud",
+                 "cloud_lift_height",
+                 "cloud_top_concentration",
+                 "cloud_filter_width",
+                 "explosible_lower",
+                 "explosible_upper",
+                 "fines_diameter",
+                 "entrainment_heights",
+                 "entrainment_bin_width"});
   out.interval = t.number("interval", out.interval, Range::non_negative());
   out.vtk = t.boolean("vtk", out.vtk);
   out.shock_threshold = t.number("shock_threshold", out.shock_threshold, Range::open(0.0, 10.0));
@@ -191,8 +267,9 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
     if (dem.switched_off) return;
     for (const char* key :
          {"surface_threshold", "surface_stations", "band_bin_width", "band_duration",
-          "contact_window", "bands", "parcel_fronts", "line_of_sight", "dust_cloud",
-          "cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"}) {
+          "contact_window", "bands", "parcel_fronts", "line_of_sight", "dust_cloud", "cloud_lift_height",
+          "cloud_top_concentration", "cloud_filter_width", "explosible_lower", "explosible_upper",
+          "fines_diameter", "entrainment_heights", "entrainment_bin_width"}) {
       if (t.has(key)) t.fail(key, "only used with [particles]");
     }
     t.finish();
@@ -216,16 +293,11 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
   out.dust_cloud = t.boolean("dust_cloud", out.dust_cloud);
   if (!out.dust_cloud) {
     for (const char* key :
-         {"cloud_lift_height", "explosible_concentration", "cloud_edge_concentration"})
+         {"cloud_lift_height", "cloud_top_concentration", "cloud_filter_width", "explosible_lower",
+          "explosible_upper", "fines_diameter", "entrainment_heights", "entrainment_bin_width"})
       if (t.has(key)) t.fail(key, "only used with dust_cloud = true");
   } else {
-    out.cloud_lift_height =
-        t.derived_number("cloud_lift_height", dem.particle_diameter,
-                         "particles.diameter (one particle diameter)", Range::non_negative());
-    out.explosible_concentration =
-        t.number("explosible_concentration", out.explosible_concentration, Range::positive());
-    out.cloud_edge_concentration =
-        t.number("cloud_edge_concentration", out.cloud_edge_concentration, Range::positive());
+    parse_dust_cloud(t, out, dem, grid);
   }
   t.finish();
 }

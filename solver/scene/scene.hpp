@@ -84,18 +84,32 @@ struct OutputConfig {
     double optical_depth = 1.0;  ///< the edge: where n (pi d^2 / 4) depth falls below this
     double bin = 0.0;            ///< m, streamwise bins (default: the smallest cell width)
   } line_of_sight;
-  // The dust cloud (series dust_cloud, docs/output.md), at each output of a scene with particles.
+  // The dust cloud (series dust_cloud, dust_concentration_histogram, dust_entrainment;
+  // docs/output.md), at each output of a scene with particles.
   bool dust_cloud = true;
   /// m: a parcel counts as lifted when its centre is higher than this above the layer
   /// rectangle's top; default: one particle diameter (the mass median of a distribution).
   double cloud_lift_height = 0.0;
-  /// g/m^3: the cloud's explosible part is where the dust concentration reaches this (a
-  /// minimum explosible concentration; 50 g/m^3 lies in the 30-100 g/m^3 typical of coal,
-  /// grain and flour dusts, Eckhoff 2003, Dust Explosions in the Process Industries, ch. 1).
-  double explosible_concentration = 50.0;
-  /// g/m^3: the cloud's top is the highest cell row above the layer where the concentration
-  /// still reaches this.
-  double cloud_edge_concentration = 1.0;
+  /// kg/m^3: the cloud's top is the highest flow-grid cell row above the layer where the
+  /// concentration still reaches this.
+  double cloud_top_concentration = 1e-3;
+  /// m: side of the square cells of the filtered dust concentration; default: one parcel
+  /// alone in a cell is a tenth of explosible_lower (at most the channel's height above the
+  /// layer). Derived by dust_cloud_filter_width().
+  double cloud_filter_width = 0.0;
+  /// kg/m^3: the explosible band of the filtered concentration. 0.05: inside the 0.03-0.06
+  /// kg/m^3 minimum explosible concentrations of coal, starch and grain dusts (Eckhoff 2003,
+  /// Dust Explosions in the Process Industries, ch. 1); 2: the low end of the upper limits of
+  /// a few kg/m^3 reported for such dusts (same source).
+  double explosible_lower = 0.05;
+  double explosible_upper = 2.0;
+  /// m: particles smaller than this are the fines (75 um: the No. 200 sieve that defines float
+  /// coal dust, US 30 CFR 75.400-1).
+  double fines_diameter = 75e-6;
+  /// m above the layer top: the heights of the vertical dust mass fluxes.
+  std::vector<double> entrainment_heights;
+  /// m: the stretches of channel of series dust_entrainment; default a fortieth of the layer.
+  double entrainment_bin_width = 0.0;
 };
 
 /// ParaView Catalyst in situ (docs/catalyst.md): Python pipelines run on the live state.

@@ -215,13 +215,31 @@ constexpr SceneKeyDoc kDocs[] = {
      "dimmed to 1/e)"},
     {"output.line_of_sight.bin", "m", "width of the streamwise bins the optical depth is made in"},
     {"output.dust_cloud", "",
-     "series of the lifted dust cloud (mass, heights, explosible area, distances behind the "
-     "shock)"},
+     "series of the lifted dust cloud (mass, heights, explosible band of the filtered "
+     "concentration, entrainment, distances behind the shock), its concentration histogram and "
+     "its entrainment along the channel"},
     {"output.cloud_lift_height", "m",
-     "a parcel is lifted when its centre is this far above the initial layer top"},
-    {"output.explosible_concentration", "g/m^3",
-     "dust concentration counted as explosible (a minimum explosible concentration)"},
-    {"output.cloud_edge_concentration", "g/m^3", "dust concentration that marks the cloud's top"},
+     "a parcel is lifted (has left the layer) when its centre is this far above the initial "
+     "layer top"},
+    {"output.cloud_top_concentration", "kg/m^3",
+     "flow-grid dust concentration that marks the cloud's top (replaces "
+     "cloud_edge_concentration in g/m^3, which is refused)"},
+    {"output.cloud_filter_width", "m",
+     "side of the square cells of the filtered dust concentration (one parcel alone in a cell: "
+     "the quantum)"},
+    {"output.explosible_lower", "kg/m^3",
+     "lower edge of the explosible band: a minimum explosible concentration (0.05: coal, starch "
+     "and grain dusts lie at 0.03-0.06; Eckhoff 2003, ch. 1). Replaces explosible_concentration "
+     "(g/m^3), which is refused"},
+    {"output.explosible_upper", "kg/m^3",
+     "upper edge of the explosible band (2: the low end of the few kg/m^3 upper limits reported "
+     "for such dusts; Eckhoff 2003, ch. 1)"},
+    {"output.fines_diameter", "m",
+     "real particles smaller than this are the fines (75 um: the No. 200 sieve of float coal "
+     "dust, US 30 CFR 75.400-1)"},
+    {"output.entrainment_heights", "m",
+     "heights above the initial layer top of the vertical dust mass fluxes"},
+    {"output.entrainment_bin_width", "m", "stretches of channel of series dust_entrainment"},
     // [insitu]
     {"insitu", "", "in-situ visualisation"},
     {"insitu.catalyst", "", "ParaView Catalyst pipelines run on the live state"},

@@ -95,7 +95,8 @@ void expect_same_run(const fs::path& reference, const fs::path& continued) {
     EXPECT_EQ(read_bytes(f.path()), read_bytes(continued / "series" / f.path().filename()))
         << f.path().filename();
   }
-  EXPECT_EQ(files, 8u);  // shock, surface (2), near layer, two bands, probes, dust cloud
+  // Shock, surface (2), near layer, two bands, probes, dust cloud, its histogram and entrainment.
+  EXPECT_EQ(files, 10u);
   expect_consistent_collection(continued, "gas");
   expect_consistent_collection(continued, "parcels");
 }

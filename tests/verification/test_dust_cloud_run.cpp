@@ -54,14 +54,26 @@ Csv read_csv(const std::filesystem::path& path) {
   return csv;
 }
 
+/// The reduced quickstart (a 15 mm layer in a 30 mm x 10 mm channel, to 0.1 ms) into `out`.
+CliResult run_reduced_quickstart(const std::filesystem::path& out, int threads,
+                                 const std::string& more = "") {
+  return run_cli("run " + std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml --out " +
+                 out.string() + " --threads " + std::to_string(threads) +
+                 " --set run.end_time=1e-4 --set output.interval=2.5e-5 --set grid.x.start=-0.010"
+                 " --set grid.x.end=0.020 --set grid.x.cells_below=10 --set grid.y.end=0.008"
+                 " --set grid.y.uniform_end=0.006 --set grid.y.cells_above=4 --set "
+                 "particles.layer.x_max=0.015" +
+                 more);
+}
+
+std::string file_bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 TEST(DustCloudRun, LiftedPlusRestingMassIsTheLayersMassAndTheConcentrationIsRhoAlpha) {
   const auto out = fresh_dir("dust_cloud_run");
-  const CliResult r = run_cli(
-      "run " + std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml --out " + out.string() +
-      " --threads 2 --set run.end_time=1e-4 --set output.interval=2.5e-5 --set grid.x.start=-0.010"
-      " --set grid.x.end=0.020 --set grid.x.cells_below=10 --set grid.y.end=0.008"
-      " --set grid.y.uniform_end=0.006 --set grid.y.cells_above=4 --set "
-      "particles.layer.x_max=0.015");
+  const CliResult r = run_reduced_quickstart(out, 2);
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   const Csv cloud = read_csv(out / "series" / "dust_cloud.csv");
@@ -101,6 +113,51 @@ TEST(DustCloudRun, LiftedPlusRestingMassIsTheLayersMassAndTheConcentrationIsRhoA
     layer_cells += c->GetTuple1(k) > 100.0;
   }
   EXPECT_GT(layer_cells, 100.0);  // the layer's cells hold hundreds of kg/m^3
+}
+
+// In a run, the entrainment rates integrated over the outputs' intervals are the lifted mass,
+// whole and stretch by stretch; the series are the same on 1 and 2 threads, byte for byte.
+TEST(DustCloudRun, EntrainmentIntegratesToTheLiftedMassAndOneAndTwoThreadsAgree) {
+  const auto one = fresh_dir("dust_cloud_run_t1"), two = fresh_dir("dust_cloud_run_t2");
+  // A finer output interval: the rates are over the intervals between outputs.
+  const std::string more = " --set output.interval=1e-5 --set output.vtk=false";
+  CliResult r = run_reduced_quickstart(one, 1, more);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_reduced_quickstart(two, 2, more);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* series :
+       {"dust_cloud.csv", "dust_entrainment.csv", "dust_concentration_histogram.csv"})
+    EXPECT_EQ(file_bytes(one / "series" / series), file_bytes(two / "series" / series)) << series;
+
+  const Csv cloud = read_csv(one / "series" / "dust_cloud.csv");
+  const std::size_t t = cloud.column("time_s"), lifted = cloud.column("lifted_mass_kg_per_m"),
+                    rate = cloud.column("entrainment_rate_kg_per_m_s"),
+                    above = cloud.column("mass_above_h0p001_kg_per_m"),
+                    flux = cloud.column("flux_at_h0p001_kg_per_m_s");
+  ASSERT_EQ(cloud.rows.size(), 11u);
+  double integral = 0.0, through = 0.0;
+  for (std::size_t k = 1; k < cloud.rows.size(); ++k) {
+    const double dt = cloud.rows[k][t] - cloud.rows[k - 1][t];
+    integral += cloud.rows[k][rate] * dt;
+    through += cloud.rows[k][flux] * dt;
+  }
+  const double m = cloud.rows.back()[lifted];
+  ASSERT_GT(m, 0.0);
+  EXPECT_NEAR(integral, m, 1e-9 * m);
+  EXPECT_NEAR(through, cloud.rows.back()[above], 1e-9 * m);
+
+  // Stretch by stretch (bins of a fortieth of the 15 mm layer, 0.375 mm): the rates per metre
+  // of layer times the bins' lengths and the intervals add up to the same mass.
+  const Csv stretches = read_csv(one / "series" / "dust_entrainment.csv");
+  const std::size_t st = stretches.column("time_s"),
+                    e = stretches.column("entrainment_rate_kg_per_m2_s");
+  double binned = 0.0, previous = 0.0;
+  for (const auto& row : stretches.rows) {
+    for (std::size_t k = 1; k < cloud.rows.size(); ++k)
+      if (cloud.rows[k][t] == row[st]) previous = cloud.rows[k - 1][t];
+    binned += row[e] * 0.015 / 40.0 * (row[st] - previous);
+  }
+  EXPECT_NEAR(binned, m, 1e-9 * m);  // parcels start in whole bins: 0.375 mm to round-off
 }
 
 }  // namespace
