@@ -14,11 +14,15 @@ namespace {
 constexpr double kFitMin = 200.0, kFitMax = 6000.0;
 }  // namespace
 
-void check_gas_temperature(TableReader& t, std::string_view key, double T, const ThermoConfig& thermo) {
+void check_gas_temperature(TableReader& t, std::string_view key, double T,
+                           const ThermoConfig& thermo) {
   if (thermo.model != ThermoModel::ThermallyPerfect) return;
   if (!(T >= kFitMin && T <= kFitMax)) {
-    t.fail(key, fmt::format("T = {:.6g} K lies outside the NASA-7 fits of thermally perfect air ({:g}-{:g} K); "
-                            "use gas.thermo = \"calorically_perfect\" for such a gas", T, kFitMin, kFitMax));
+    t.fail(key,
+           fmt::format(
+               "T = {:.6g} K lies outside the NASA-7 fits of thermally perfect air ({:g}-{:g} K); "
+               "use gas.thermo = \"calorically_perfect\" for such a gas",
+               T, kFitMin, kFitMax));
   }
 }
 
@@ -26,6 +30,7 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
   t.expect_keys({"p", "rho", "T", "u", "v"});
   PrimitiveState s;
   s.p = t.required_number("p", Range::positive());
+  check_plausible_pressure(t, "p", s.p);
   s.u = t.number("u", 0.0);
   s.v = t.number("v", 0.0);
   const bool has_rho = t.has("rho"), has_T = t.has("T");
@@ -36,6 +41,7 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
   } else {
     // p = rho R T (eq. 4) holds for both thermodynamic models.
     const double T = t.required_number("T", Range::positive());
+    check_plausible_temperature(t, "T", T);
     check_gas_temperature(t, "T", T, thermo);
     s.rho = s.p / (thermo.gas_constant * T);
     s.T = T;  // kept exactly: p / (rho R) would differ from it in the last bit
@@ -46,14 +52,17 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
 
 void parse_gas(TableReader t, GasConfig& gas) {
   t.expect_keys({"thermo", "gamma", "gas_constant", "transport", "scheme", "gravity"});
-  const auto thermo = t.choice("thermo", "thermally_perfect", {"thermally_perfect", "calorically_perfect"});
+  const auto thermo =
+      t.choice("thermo", "thermally_perfect", {"thermally_perfect", "calorically_perfect"});
   gas.thermo.model = thermo == "thermally_perfect" ? ThermoModel::ThermallyPerfect
                                                    : ThermoModel::CaloricallyPerfect;
   // gamma is read (and so written into the resolved scene) only where it is used, so the
   // resolved scene of thermally perfect air parses back.
   if (gas.thermo.model == ThermoModel::ThermallyPerfect) {
     if (t.has("gamma")) {
-      t.fail("gamma", "only used with thermo = \"calorically_perfect\" (thermally perfect air takes cp(T) from NASA polynomials)");
+      t.fail("gamma",
+             "only used with thermo = \"calorically_perfect\" (thermally perfect air takes cp(T) "
+             "from NASA polynomials)");
     }
   } else {
     gas.thermo.gamma = t.number("gamma", 1.4, Range::open(1.0, 5.0 / 3.0 + 1e-12));
@@ -67,17 +76,22 @@ void parse_gas(TableReader t, GasConfig& gas) {
   gas.gravity_y = g[1];
 
   TableReader tr = t.table("transport");
-  tr.expect_keys({"model", "viscosity", "prandtl", "sutherland_mu_ref", "sutherland_t_ref", "sutherland_s"});
-  const auto model = tr.choice("model", "gordon_wilke", {"inviscid", "constant", "sutherland", "gordon_wilke"});
+  tr.expect_keys(
+      {"model", "viscosity", "prandtl", "sutherland_mu_ref", "sutherland_t_ref", "sutherland_s"});
+  const auto model =
+      tr.choice("model", "gordon_wilke", {"inviscid", "constant", "sutherland", "gordon_wilke"});
   gas.transport.model = model == "inviscid"     ? TransportModel::Inviscid
                         : model == "constant"   ? TransportModel::Constant
                         : model == "sutherland" ? TransportModel::Sutherland
                                                 : TransportModel::GordonWilke;
   gas.transport.viscosity = tr.number("viscosity", gas.transport.viscosity, Range::positive());
   gas.transport.prandtl = tr.number("prandtl", gas.transport.prandtl, Range::positive());
-  gas.transport.sutherland_mu_ref = tr.number("sutherland_mu_ref", gas.transport.sutherland_mu_ref, Range::positive());
-  gas.transport.sutherland_t_ref = tr.number("sutherland_t_ref", gas.transport.sutherland_t_ref, Range::positive());
-  gas.transport.sutherland_s = tr.number("sutherland_s", gas.transport.sutherland_s, Range::non_negative());
+  gas.transport.sutherland_mu_ref =
+      tr.number("sutherland_mu_ref", gas.transport.sutherland_mu_ref, Range::positive());
+  gas.transport.sutherland_t_ref =
+      tr.number("sutherland_t_ref", gas.transport.sutherland_t_ref, Range::positive());
+  gas.transport.sutherland_s =
+      tr.number("sutherland_s", gas.transport.sutherland_s, Range::non_negative());
   tr.finish();
 
   TableReader sc = t.table("scheme");
@@ -91,15 +105,20 @@ void parse_gas(TableReader t, GasConfig& gas) {
   gas.scheme.minmod_b = sc.number("minmod_b", gas.scheme.minmod_b, Range::closed(1.0, 4.0));
   gas.scheme.cfl = sc.number("cfl", gas.scheme.cfl, Range::open_closed(0.0, 1.0));
   if (gas.scheme.cfl < kMinCourant) {
-    sc.fail("cfl", fmt::format("{:g} is below {:g}: the run would take more than {:g} times the steps of a usual CFL "
-                               "(0.5), which is no stability gain", gas.scheme.cfl, kMinCourant, 0.5 / kMinCourant));
+    sc.fail(
+        "cfl",
+        fmt::format(
+            "{:g} is below {:g}: the run would take more than {:g} times the steps of a usual CFL "
+            "(0.5), which is no stability gain",
+            gas.scheme.cfl, kMinCourant, 0.5 / kMinCourant));
   }
   sc.finish();
   t.finish();
 }
 
 static BoundaryKind boundary_kind(TableReader& t, std::string_view side, const char* fallback) {
-  const auto k = t.choice(side, fallback, {"slip_wall", "no_slip_wall", "inflow", "outflow", "periodic"});
+  const auto k =
+      t.choice(side, fallback, {"slip_wall", "no_slip_wall", "inflow", "outflow", "periodic"});
   if (k == "slip_wall") return BoundaryKind::SlipWall;
   if (k == "no_slip_wall") return BoundaryKind::NoSlipWall;
   if (k == "inflow") return BoundaryKind::Inflow;
@@ -114,10 +133,12 @@ void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo
   b.bottom = boundary_kind(t, "bottom", "slip_wall");
   b.top = boundary_kind(t, "top", "slip_wall");
   if ((b.left == BoundaryKind::Periodic) != (b.right == BoundaryKind::Periodic)) {
-    t.fail(b.left == BoundaryKind::Periodic ? "right" : "left", "periodic boundaries come in pairs (left and right)");
+    t.fail(b.left == BoundaryKind::Periodic ? "right" : "left",
+           "periodic boundaries come in pairs (left and right)");
   }
   if ((b.bottom == BoundaryKind::Periodic) != (b.top == BoundaryKind::Periodic)) {
-    t.fail(b.bottom == BoundaryKind::Periodic ? "top" : "bottom", "periodic boundaries come in pairs (bottom and top)");
+    t.fail(b.bottom == BoundaryKind::Periodic ? "top" : "bottom",
+           "periodic boundaries come in pairs (bottom and top)");
   }
   if (t.has("inflow")) {
     b.inflow = parse_state(t.table("inflow"), thermo);
@@ -126,7 +147,8 @@ void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo
   t.finish();
 }
 
-void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo, const GridConfig& grid) {
+void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo,
+                   const GridConfig& grid) {
   t.expect_keys({"kind", "state", "left", "right", "position", "axis", "mach"});
   const auto kind = t.choice("kind", "uniform", {"uniform", "riemann", "shock"});
   if (kind == "uniform") {
@@ -148,16 +170,18 @@ void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& ther
   ic.axis = t.choice("axis", "x", {"x", "y"})[0];
   const AxisSpec& a = ic.axis == 'x' ? grid.x : grid.y;
   if (ic.position <= a.start || ic.position >= a.end) {
-    t.fail("position", fmt::format("{:.9g} lies outside the grid along {} ({:.9g} to {:.9g} m)", ic.position, ic.axis,
-                                   a.start, a.end));
+    t.fail("position", fmt::format("{:.9g} lies outside the grid along {} ({:.9g} to {:.9g} m)",
+                                   ic.position, ic.axis, a.start, a.end));
   }
   if (ic.kind == InitialCondition::Kind::Shock) {
     // The post-shock state must exist and stay within what the gas model covers.
     try {
       const ShockJump jump = normal_shock(ic.state, ic.mach, thermo, ic.axis);
       if (thermo.model == ThermoModel::ThermallyPerfect && jump.post_temperature > kFitMax) {
-        t.fail("mach", fmt::format("the post-shock temperature {:.6g} K lies beyond the NASA-7 fits of air "
-                                   "(up to {:g} K)", jump.post_temperature, kFitMax));
+        t.fail("mach",
+               fmt::format("the post-shock temperature {:.6g} K lies beyond the NASA-7 fits of air "
+                           "(up to {:g} K)",
+                           jump.post_temperature, kFitMax));
       }
     } catch (const std::invalid_argument& e) {
       t.fail("mach", std::string("no post-shock state: ") + e.what());

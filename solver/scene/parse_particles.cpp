@@ -2,8 +2,12 @@
 // density, contact stiffness, damping or restitution) has no defaults; the numerical settings
 // default to the paper's (Table 2); choices where the paper is silent or garbled are explained
 // in docs/dem.md.
+#include <fmt/format.h>
+
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "solver/dem/coarse_graining.hpp"
@@ -14,22 +18,22 @@
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
 
-#include <fmt/format.h>
-
 namespace dustlift::scene_detail {
 namespace {
 
 /// Where a material property left out of a scene comes from: not a silent default but the
 /// paper's dust, named so (with its value) in the resolved scene and the key reference.
 std::string paper_material(double value) {
-  return fmt::format("the paper's 100 um dust, {:g} (Tables 1, 2): not given, set it for your dust", value);
+  return fmt::format("the paper's 100 um dust, {:g} (Tables 1, 2): not given, set it for your dust",
+                     value);
 }
 
 /// [particles.contact], or [particles.wall_contact] whose defaults are the contact's
 /// (`from` names it: they are derived, so a resolved scene with another contact law follows it).
 /// The dashpot is given (`damping`) or follows from a normal restitution coefficient for a
 /// pair of particles of reduced mass `m_eff` (at a wall: a particle of mass `m_eff`).
-ContactParams parse_contact(TableReader t, const ContactParams& fallback, double m_eff, const char* from = nullptr) {
+ContactParams parse_contact(TableReader t, const ContactParams& fallback, double m_eff,
+                            const char* from = nullptr) {
   t.expect_keys({"k_n", "k_t", "damping", "restitution", "coulomb", "friction"});
   // The parcel-parcel law's constants are the paper's 100 um dust's unless given: they are
   // noted as taken from it (resolved scene, info), never silent.
@@ -39,31 +43,40 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
   };
   ContactParams c;
   // The parcel-parcel law's stiffness is the dust's (required); k_t follows the paper's ratio.
-  c.k_n = from != nullptr ? number("k_n", fallback.k_n, Range::positive()) : t.required_number("k_n", Range::positive());
-  c.k_t = from != nullptr ? number("k_t", fallback.k_t, Range::non_negative())
-                          : t.derived_number("k_t", 0.002 * c.k_n, t.full_key("k_n") + " (k_t = 0.002 k_n, the paper's ratio)",
-                                             Range::non_negative());
+  c.k_n = from != nullptr ? number("k_n", fallback.k_n, Range::positive())
+                          : t.required_number("k_n", Range::positive());
+  c.k_t = from != nullptr
+              ? number("k_t", fallback.k_t, Range::non_negative())
+              : t.derived_number("k_t", 0.002 * c.k_n,
+                                 t.full_key("k_n") + " (k_t = 0.002 k_n, the paper's ratio)",
+                                 Range::non_negative());
   if (t.has("restitution")) {
     // The linear law's e_n = exp(-pi zeta / sqrt(1 - zeta^2)) inverted for the dashpot.
     if (t.has("damping")) t.fail("restitution", "give either damping or restitution, not both");
     const double e = t.required_number("restitution", Range::open_closed(0.0, 1.0));
-    c.damping = t.derived_number("damping", damping_for_restitution(m_eff, c.k_n, e),
-                                 t.full_key("restitution") + ", k_n and the particles' mass (" +
-                                     (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") + ")",
-                                 Range::non_negative());
+    c.damping = t.derived_number(
+        "damping", damping_for_restitution(m_eff, c.k_n, e),
+        t.full_key("restitution") + ", k_n and the particles' mass (" +
+            (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") +
+            ")",
+        Range::non_negative());
   } else if (from != nullptr) {
     c.damping = number("damping", fallback.damping, Range::non_negative());
   } else {
     if (!t.has("damping"))
-      t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the damping then follows for "
+      t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the "
+                                    "damping then follows for "
                                     "two particles of particles.diameter, reduced mass {:.4g} kg)",
                                     m_eff));
     c.damping = t.required_number("damping", Range::non_negative());
   }
-  const bool coulomb = from != nullptr ? t.derived_boolean("coulomb", std::isfinite(fallback.friction), std::string(from) + ".coulomb")
-                                       : t.boolean("coulomb", std::isfinite(fallback.friction));
+  const bool coulomb = from != nullptr
+                           ? t.derived_boolean("coulomb", std::isfinite(fallback.friction),
+                                               std::string(from) + ".coulomb")
+                           : t.boolean("coulomb", std::isfinite(fallback.friction));
   if (coulomb) {
-    c.friction = number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5, Range::non_negative());
+    c.friction = number("friction", std::isfinite(fallback.friction) ? fallback.friction : 0.5,
+                        Range::non_negative());
   } else {
     if (t.has("friction")) t.fail("friction", "only used with coulomb = true");
     c.friction = std::numeric_limits<double>::infinity();
@@ -72,23 +85,45 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
   return c;
 }
 
+/// The key reference's default of volume_fraction: a generated layer's, optional for a file.
+void note_volume_fraction_default(TableReader& lt) {
+  if (KeyFact* f = lt.recorded_fact("volume_fraction"))
+    f->fallback =
+        fmt::format("{:g} (with arrangement = \"file\": optional)", LayerConfig{}.volume_fraction);
+}
+
 LayerArrangement parse_arrangement(TableReader& lt) {
-  const std::string name = lt.string("arrangement", "jittered_lattice");
-  std::string allowed;
-  for (const auto& [known, value] : kLayerArrangementNames) {
+  std::array<std::string_view, kLayerArrangementNames.size()> names;
+  for (std::size_t k = 0; k < names.size(); ++k) names[k] = kLayerArrangementNames[k].first;
+  const std::string name = lt.choice("arrangement", "jittered_lattice", names);
+  for (const auto& [known, value] : kLayerArrangementNames)
     if (known == name) return value;
-    allowed += (allowed.empty() ? "\"" : ", \"") + std::string(known) + "\"";
-  }
-  lt.fail("arrangement", "\"" + name + "\" is not one of " + allowed);
+  throw std::logic_error("parse_arrangement: a name choice() accepted has no arrangement");
 }
 
 }  // namespace
 
-void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary) {
+std::optional<LayerFloor> read_layer_floor(TableReader& root) {
+  TableReader layer = root.lookahead("particles").lookahead("layer");
+  if (!layer.has("thickness")) return std::nullopt;
+  LayerFloor floor;
+  floor.thickness = layer.required_number("thickness", Range::positive());
+  floor.y_max = layer.number("y_max", LayerConfig{}.y_max);
+  floor.y = floor.y_max - floor.thickness;
+  return floor;
+}
+
+bool agrees_with_floor(double y, const LayerFloor& floor) {
+  return std::abs(y - floor.y) <= 1e-9 * (floor.thickness + std::abs(floor.y_max));
+}
+
+void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
+                     const BoundaryConfig& boundary) {
   t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature",
                  "parcel_diameter", "layer", "real_per_parcel", "contact", "wall_contact",
                  "courant", "skin", "fast_skin_substeps", "gravity", "g", "size_distribution"});
   dem.enabled = t.boolean("enabled", t.present());
+  if (KeyFact* f = t.recorded_fact("enabled")) f->fallback = "true when [particles] is present";
   if (!dem.enabled) {
     // Switched off on purpose: the rest of the section (and the dust's coupling and output
     // keys) stays as written, unread, so one override turns the dust off.
@@ -120,6 +155,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   dem.density = t.required_number("density", Range::positive());
   dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
+  check_plausible_temperature(t, "temperature", dem.initial_temperature);
   const bool parcel_diameter_given = t.has("parcel_diameter");
   dem.parcel_diameter =
       poly ? t.derived_number(
@@ -135,14 +171,29 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   const char* size_key = parcel_diameter_given ? "parcel_diameter" : "diameter";
 
   TableReader lt = t.table("layer");
-  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "arrangement", "settle", "seed",
+  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "thickness", "arrangement", "settle", "seed",
                   "volume_fraction", "file", "loose_top_rows", "loose_top_fill"});
   LayerConfig& L = dem.layer;
   L.x_min = lt.number("x_min", L.x_min);
   L.x_max = lt.number("x_max", L.x_max);
   if (!(L.x_max > L.x_min)) lt.fail("x_max", "must be greater than x_min");
-  L.y_min = lt.number("y_min", L.y_min);
+  // The depth as one key: the bottom (and the floor, grid.y.start) follow from the top.
+  const std::optional<double> thickness = lt.optional_number("thickness", Range::positive());
   L.y_max = lt.number("y_max", L.y_max);
+  if (thickness) {
+    const LayerFloor floor{L.y_max - *thickness, *thickness, L.y_max};
+    L.y_min = lt.derived_number("y_min", floor.y, "particles.layer.thickness (y_max - thickness)");
+    if (lt.has("y_min") && !agrees_with_floor(L.y_min, floor))
+      lt.fail(
+          "y_min",
+          fmt::format(
+              "{:.9g} m contradicts particles.layer.thickness = {:.9g} m, which puts the layer's "
+              "bottom at y_max - thickness = {:.9g} m: give either particles.layer.y_min or "
+              "particles.layer.thickness",
+              L.y_min, *thickness, floor.y));
+  } else {
+    L.y_min = lt.number("y_min", L.y_min);
+  }
   if (!(L.y_max > L.y_min)) lt.fail("y_max", "must be greater than y_min");
   L.arrangement = parse_arrangement(lt);
   const bool settled = L.arrangement == LayerArrangement::Settled;
@@ -167,13 +218,18 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
         lt.fail(key, "not used with arrangement = \"file\" (thin the file's rows instead)");
     }
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
-    const ParcelFileLimits limits{grid.x.start, grid.x.end, grid.y.start, grid.y.end, dem.particle_diameter,
-                                  min_cell_width(grid) * (1.0 + kCellTolerance)};
-    const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter, 0.0, 0.0, 0.0, dem.initial_temperature};
+    note_volume_fraction_default(lt);
+    const ParcelFileLimits limits{
+        grid.x.start,          grid.x.end,
+        grid.y.start,          grid.y.end,
+        dem.particle_diameter, min_cell_width(grid) * (1.0 + kCellTolerance)};
+    const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter,    0.0,
+                                0.0, 0.0, dem.initial_temperature};
     dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
     // Parcels of diameter parcel_diameter that hold as many real particles (n ~ D^2, eq. 11).
     double equivalent = 0.0;
-    for (const PlacedParcel& p : dem.layer_parcels) equivalent += std::pow(p.diameter / dem.parcel_diameter, 2);
+    for (const PlacedParcel& p : dem.layer_parcels)
+      equivalent += std::pow(p.diameter / dem.parcel_diameter, 2);
     if (fraction) L.volume_fraction = *fraction;
     dem.size_classes =
         file_size_classes(dem.layer_parcels, dem.particle_diameter, dem.parcel_diameter);
@@ -185,21 +241,30 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     // A size in the wrong unit (40 for 40 um) would otherwise surface as a packing error.
     const double depth = L.y_max - L.y_min, cell = min_cell_width(grid);
     if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
-      t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are in metres (40 um is 40e-6)",
+      t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are "
+                                   "in metres (40 um is 40e-6)",
                                    dem.parcel_diameter,
-                                   dem.parcel_diameter > depth ? "the layer's depth" : "the smallest grid cell",
+                                   dem.parcel_diameter > depth ? "the layer's depth"
+                                                               : "the smallest grid cell",
                                    dem.parcel_diameter > depth ? depth : cell));
     }
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
-    L.seed = static_cast<std::uint64_t>(lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+    note_volume_fraction_default(lt);
+    L.seed = static_cast<std::uint64_t>(
+        lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
     // Before the lattice is planned (it is sized by the parcel count): the parcels must fit
     // the machine.
     const double parcels = L.volume_fraction * area / disc_area(dem.parcel_diameter);
     const std::string shortfall = memory_shortfall(0.0, parcels);
     if (!shortfall.empty() || parcels > static_cast<double>(kMaxParcels)) {
-      t.fail(size_key, fmt::format("{:.9g} m parcels fill the layer with {:.3g} parcels: the run {}", dem.parcel_diameter,
-                                   parcels, shortfall.empty() ? fmt::format("would need more than the {:.3g} parcel ids", static_cast<double>(kMaxParcels)) : shortfall));
+      t.fail(
+          size_key,
+          fmt::format("{:.9g} m parcels fill the layer with {:.3g} parcels: the run {}",
+                      dem.parcel_diameter, parcels,
+                      shortfall.empty() ? fmt::format("would need more than the {:.3g} parcel ids",
+                                                      static_cast<double>(kMaxParcels))
+                                        : shortfall));
     }
     LayerLattice plan;
     try {
@@ -208,7 +273,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
       lt.fail("volume_fraction", e.what());
     }
     // A looser top: the top rows keep a share of their sites (docs/dem.md, "A looser top").
-    L.loose_top_rows = static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows));
+    L.loose_top_rows =
+        static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows, "the layer's rows"));
     L.loose_top_fill = lt.number("loose_top_fill", 1.0, Range::open_closed(0.0, 1.0));
     if (L.loose_top_fill != 1.0 && L.loose_top_rows == 0) {
       lt.fail("loose_top_fill", "needs loose_top_rows > 0 (the rows it thins)");
@@ -249,10 +315,12 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                          Range::positive());
   }
 
-  // Restitution is of two particles of particles.diameter (reduced mass m/2), or of one at a wall (m).
+  // Restitution is of two particles of particles.diameter (reduced mass m/2), or of one at a wall
+  // (m).
   const double particle_mass = dem.density * sphere_volume(dem.particle_diameter);
   dem.contact = parse_contact(t.table("contact", true), dem.contact, 0.5 * particle_mass);
-  dem.wall_contact = parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
+  dem.wall_contact =
+      parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
 
   // The parcels live in the gas domain: its edges are walls for them, except where the
   // gas is periodic (then the parcels are periodic too). Parcels never leave the grid.
@@ -265,7 +333,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
   D.wall_left = D.wall_right = !D.periodic_x;
   D.wall_bottom = D.wall_top = boundary.bottom != BoundaryKind::Periodic;
   if (boundary.bottom == BoundaryKind::Periodic) {
-    t.fail("enabled", "parcels need walls at the bottom and top of the grid (boundary.bottom/top periodic)");
+    t.fail("enabled",
+           "parcels need walls at the bottom and top of the grid (boundary.bottom/top periodic)");
   }
   // Which edge leaves the grid, against the grid's bounds.
   const struct {
@@ -279,25 +348,32 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
                {"y_max", L.y_max, D.y_max, L.y_max > D.y_max, "grid.y.end"}};
   for (const auto& e : edges) {
     if (e.outside)
-      lt.fail(e.key, fmt::format("{:.9g} m lies outside the grid ({} = {:.9g} m): the layer rectangle must lie "
-                                 "inside x in [{:.9g}, {:.9g}] m, y in [{:.9g}, {:.9g}] m",
-                                 e.value, e.side, e.bound, D.x_min, D.x_max, D.y_min, D.y_max));
+      lt.fail(e.key,
+              fmt::format(
+                  "{:.9g} m lies outside the grid ({} = {:.9g} m): the layer rectangle must lie "
+                  "inside x in [{:.9g}, {:.9g}] m, y in [{:.9g}, {:.9g}] m",
+                  e.value, e.side, e.bound, D.x_min, D.x_max, D.y_min, D.y_max));
   }
 
   dem.courant = t.number("courant", dem.courant, Range::open_closed(0.0, 0.5));
   if (dem.courant < kMinCourant) {
-    t.fail("courant", fmt::format("{:g} is below {:g}: the DEM would take more than {:g} times the sub-steps of "
-                                  "the default {:g} (eq. 18), which buys no accuracy", dem.courant, kMinCourant,
-                                  DemConfig{}.courant / kMinCourant, DemConfig{}.courant));
+    t.fail("courant",
+           fmt::format(
+               "{:g} is below {:g}: the DEM would take more than {:g} times the sub-steps of "
+               "the default {:g} (eq. 18), which buys no accuracy",
+               dem.courant, kMinCourant, DemConfig{}.courant / kMinCourant, DemConfig{}.courant));
   }
   dem.skin = t.number("skin", dem.skin, Range::open_closed(0.0, 1.0));
-  dem.fast_skin_substeps = t.number("fast_skin_substeps", dem.fast_skin_substeps, Range::non_negative());
+  dem.fast_skin_substeps =
+      t.number("fast_skin_substeps", dem.fast_skin_substeps, Range::non_negative());
   // Gravity on the parcels: true (g along -y) or a vector [g_x, g_y] in m/s^2 (a vertical
   // tube along x has it along -x).
   if (t.is_array("gravity")) {
-    if (t.has("g")) t.fail("g", "only used with gravity = true (a gravity vector gives its own magnitude)");
+    if (t.has("g"))
+      t.fail("g", "only used with gravity = true (a gravity vector gives its own magnitude)");
     const std::vector<double> g = t.number_list("gravity", {}, Range{});
-    if (g.size() != 2) t.fail("gravity", "a gravity vector has two components, [g_x, g_y] in m/s^2");
+    if (g.size() != 2)
+      t.fail("gravity", "a gravity vector has two components, [g_x, g_y] in m/s^2");
     dem.gravity_x = g[0];
     dem.gravity_y = g[1];
   } else {
@@ -307,6 +383,9 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, cons
     dem.gravity_x = 0.0;
     dem.gravity_y = -g;
   }
+  // Either form, whichever this scene used.
+  if (KeyFact* f = t.recorded_fact("gravity"))
+    *f = KeyFact{"boolean or list of numbers", "false", "true (g along -y), false, or [g_x, g_y]"};
   t.finish();
 }
 

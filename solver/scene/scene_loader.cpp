@@ -1,3 +1,4 @@
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,7 +42,8 @@ std::string apply_override(toml::table& doc, const std::string& assignment) {
   std::size_t start = 0;
   while (true) {
     const auto dot = path.find('.', start);
-    const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    const std::string part =
+        path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
     if (part.empty()) throw SceneError("--set '" + assignment + "': empty key segment");
     if (dot == std::string::npos) {
       cur->insert_or_assign(part, *parsed.get("v"));
@@ -64,8 +66,8 @@ std::string apply_override(toml::table& doc, const std::string& assignment) {
 
 namespace {
 
-Scene parse_scene_into(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
-                       ParseContext& context) {
+Scene parse_scene_into(const std::string& text, const std::string& name,
+                       const std::vector<std::string>& overrides, ParseContext& context) {
   toml::table doc;
   try {
     doc = toml::parse(text, name);
@@ -82,10 +84,14 @@ Scene parse_scene_into(const std::string& text, const std::string& name, const s
   scene.overrides = overrides;
   toml::table resolved;
   TableReader root(&doc, "", name, &resolved, &context);
-  root.expect_keys({"run", "grid", "gas", "boundary", "initial", "particles", "coupling", "output", "insitu"});
+  root.expect_keys(
+      {"run", "grid", "gas", "boundary", "initial", "particles", "coupling", "output", "insitu"});
   using namespace scene_detail;
   parse_run(root.table("run"), scene.run);
-  parse_grid(root.table("grid", true), scene.grid);
+  context.allow_implausible = scene.run.allow_implausible;
+  // The floor may follow the layer's thickness (particles.layer.thickness): read before the grid.
+  const std::optional<LayerFloor> floor = read_layer_floor(root);
+  parse_grid(root.table("grid", true), scene.grid, floor);
   parse_gas(root.table("gas"), scene.gas);
   parse_boundary(root.table("boundary"), scene.gas.boundary, scene.gas.thermo);
   parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo, scene.grid);
@@ -104,7 +110,8 @@ Scene parse_scene_into(const std::string& text, const std::string& name, const s
   for (const auto& o : overrides) out << "# --set " << o << "\n";
   out << resolved << "\n";
   if (!context.derived.empty()) {
-    out << "\n# Derived defaults: not set above, so computed from other keys when this file is read\n"
+    out << "\n# Derived defaults: not set above, so computed from other keys when this file is "
+           "read\n"
         << "# (values of this run; set a key to pin it):\n";
     for (const auto& d : context.derived) out << "#   " << d << "\n";
   }

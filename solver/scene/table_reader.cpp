@@ -1,12 +1,12 @@
 #include "solver/scene/table_reader.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
 
 namespace dustlift {
 
@@ -36,7 +36,8 @@ std::string Range::describe() const {
 std::string read_input_file(const std::string& path, const std::string& kind) {
   // A folder opens as a stream on Linux and reads as empty: name it instead.
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a folder, not a " + kind);
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path + ": is a folder, not a " + kind);
   // A device or pipe (/dev/zero as a layer file) could be read forever.
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
     throw SceneError(path + ": is not a regular file, not a " + kind);
@@ -51,7 +52,11 @@ std::string read_input_file(const std::string& path, const std::string& kind) {
 
 TableReader::TableReader(const toml::table* table, std::string prefix, std::string file,
                          toml::table* out, ParseContext* context)
-    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)), out_(out), context_(context) {}
+    : table_(table),
+      prefix_(std::move(prefix)),
+      file_(std::move(file)),
+      out_(out),
+      context_(context) {}
 
 namespace {
 
@@ -72,7 +77,9 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 /// A value as TOML text (the shortest that reads back to the same double).
-std::string toml_text(double v) { return fmt::format("{}", v); }
+std::string toml_text(double v) {
+  return fmt::format("{}", v);
+}
 
 std::string list_text(const std::vector<double>& v) {
   std::string text = "[";
@@ -100,9 +107,11 @@ void TableReader::expect_keys(std::initializer_list<std::string_view> keys) {
     std::size_t best_distance = std::string::npos;
     for (const auto& e : expected_) {
       const std::size_t d = edit_distance(k.str(), e);
-      if (d <= std::max<std::size_t>(2, e.size() / 3) && d < best_distance) best_distance = d, best = e;
+      if (d <= std::max<std::size_t>(2, e.size() / 3) && d < best_distance)
+        best_distance = d, best = e;
     }
-    throw SceneError(where(&v, full_key(k.str())) + ": key '" + full_key(k.str()) + "': unknown key" +
+    throw SceneError(where(&v, full_key(k.str())) + ": key '" + full_key(k.str()) +
+                     "': unknown key" +
                      (best.empty() ? "" : " (did you mean '" + full_key(best) + "'?)"));
   }
 }
@@ -110,7 +119,8 @@ void TableReader::expect_keys(std::initializer_list<std::string_view> keys) {
 std::string reference_key(const std::string& full) {
   std::string out;
   for (std::size_t i = 0; i < full.size(); ++i) {
-    if (full[i] == '[') {  // an array of tables' entry: "output.bands[1].name" -> "output.bands.name"
+    if (full[i] ==
+        '[') {  // an array of tables' entry: "output.bands[1].name" -> "output.bands.name"
       while (i < full.size() && full[i] != ']') ++i;
       continue;
     }
@@ -119,9 +129,11 @@ std::string reference_key(const std::string& full) {
   return out;
 }
 
-void TableReader::note_fact(std::string_view key, std::string kind, std::string fallback, std::string range) {
+void TableReader::note_fact(std::string_view key, std::string kind, std::string fallback,
+                            std::string range) {
   if (context_ == nullptr || read_depth_ != 1) return;
-  context_->keys[reference_key(full_key(key))] = KeyFact{std::move(kind), std::move(fallback), std::move(range)};
+  context_->keys[reference_key(full_key(key))] =
+      KeyFact{std::move(kind), std::move(fallback), std::move(range)};
 }
 
 std::string TableReader::full_key(std::string_view key) const {
@@ -136,8 +148,8 @@ std::string TableReader::where(const toml::node* n, const std::string& full) con
     const std::pair<std::string, std::string>* best = nullptr;
     for (const auto& o : context_->overrides) {
       // The override's value, a part of it (an inline table), or a table made on its way.
-      const bool covers = key == o.first || key.rfind(o.first + ".", 0) == 0 || key.rfind(o.first + "[", 0) == 0 ||
-                          o.first.rfind(key + ".", 0) == 0;
+      const bool covers = key == o.first || key.rfind(o.first + ".", 0) == 0 ||
+                          key.rfind(o.first + "[", 0) == 0 || o.first.rfind(key + ".", 0) == 0;
       if (covers && (best == nullptr || o.first.size() > best->first.size())) best = &o;
     }
     if (best != nullptr) return "--set '" + best->second + "'";
@@ -160,11 +172,14 @@ const toml::node* TableReader::node(std::string_view key) const {
   return table_ == nullptr ? nullptr : table_->get(key);
 }
 
-bool TableReader::has(std::string_view key) const { return node(key) != nullptr; }
+bool TableReader::has(std::string_view key) const {
+  return node(key) != nullptr;
+}
 
 void TableReader::mark(std::string_view key) {
   if (declared_ && std::find(expected_.begin(), expected_.end(), key) == expected_.end()) {
-    throw std::logic_error("TableReader: key '" + full_key(key) + "' read but not declared in expect_keys");
+    throw std::logic_error("TableReader: key '" + full_key(key) +
+                           "' read but not declared in expect_keys");
   }
   if (std::find(read_.begin(), read_.end(), key) == read_.end()) read_.emplace_back(key);
 }
@@ -174,9 +189,10 @@ bool TableReader::is_array(std::string_view key) const {
   return n != nullptr && n->is_array();
 }
 
-double TableReader::derived_number(std::string_view key, double derived, const std::string& from, Range range) {
+double TableReader::derived_number(std::string_view key, double derived, const std::string& from,
+                                   Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", "from " + from, range.describe());
+  note_fact(key, "number", "from " + from, range.reference());
   if (auto v = optional_number(key, range)) return *v;
   note_derived(key, toml_text(derived), from);
   return derived;
@@ -191,10 +207,11 @@ bool TableReader::derived_boolean(std::string_view key, bool derived, const std:
   return derived;
 }
 
-std::vector<double> TableReader::derived_number_list(std::string_view key, const std::vector<double>& derived,
+std::vector<double> TableReader::derived_number_list(std::string_view key,
+                                                     const std::vector<double>& derived,
                                                      const std::string& from, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "list of numbers", "from " + from, range.describe());
+  note_fact(key, "list of numbers", "from " + from, range.reference());
   if (has(key)) return number_list(key, derived, range);
   mark(key);
   std::string text = "[";
@@ -203,29 +220,38 @@ std::vector<double> TableReader::derived_number_list(std::string_view key, const
   return derived;
 }
 
-void TableReader::note_derived(std::string_view key, const std::string& toml, const std::string& from) {
+void TableReader::note_derived(std::string_view key, const std::string& toml,
+                               const std::string& from) {
   if (context_ != nullptr) {
     // The kind stays the reader's (a scene that sets the key records it).
     context_->keys[reference_key(full_key(key))].fallback = "from " + from;
   }
-  if (context_ != nullptr) context_->derived.push_back(full_key(key) + " = " + toml + "   # from " + from);
+  if (context_ != nullptr)
+    context_->derived.push_back(full_key(key) + " = " + toml + "   # from " + from);
 }
 
 static const char* type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
   }
 }
 
 std::optional<double> TableReader::optional_number(std::string_view key, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", "optional", range.describe());
+  note_fact(key, "number", "optional", range.reference());
   mark(key);
   const toml::node* n = node(key);
   if (n == nullptr) return std::nullopt;
@@ -241,6 +267,7 @@ std::optional<double> TableReader::optional_number(std::string_view key, Range r
     std::ostringstream s;
     s.precision(10);
     s << "value " << v << " out of range: must be " << range.describe();
+    if (!range.bounds.empty()) s << ", i.e. " << range.bounds;
     fail(key, s.str());
   }
   if (out_ != nullptr) out_->insert_or_assign(key, v);
@@ -249,7 +276,7 @@ std::optional<double> TableReader::optional_number(std::string_view key, Range r
 
 double TableReader::number(std::string_view key, double fallback, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", toml_text(fallback), range.describe());
+  note_fact(key, "number", toml_text(fallback), range.reference());
   auto v = optional_number(key, range);
   if (!v) {
     if (out_ != nullptr) out_->insert_or_assign(key, fallback);
@@ -260,17 +287,21 @@ double TableReader::number(std::string_view key, double fallback, Range range) {
 
 double TableReader::required_number(std::string_view key, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", "required", range.describe());
+  note_fact(key, "number", "required", range.reference());
   auto v = optional_number(key, range);
-  if (!v) fail(key, "missing required number (" + range.describe() + ")");
+  if (!v) fail(key, "missing required number (" + range.reference() + ")");
   return *v;
 }
 
 long long TableReader::integer(std::string_view key, long long fallback, long long min,
-                               long long max) {
+                               long long max, std::string_view max_name) {
   ReadScope scope(read_depth_);
   note_fact(key, "integer", std::to_string(fallback),
-            "in [" + std::to_string(min) + ", " + (max == std::numeric_limits<long long>::max() ? std::string("...") : std::to_string(max)) + "]");
+            "in [" + std::to_string(min) + ", " +
+                (!max_name.empty()                              ? std::string(max_name)
+                 : max == std::numeric_limits<long long>::max() ? std::string("...")
+                                                                : std::to_string(max)) +
+                "]");
   mark(key);
   const toml::node* n = node(key);
   long long v = fallback;
@@ -279,8 +310,10 @@ long long TableReader::integer(std::string_view key, long long fallback, long lo
     if (!i) fail(key, std::string("expected an integer, got ") + type_name(*n));
     v = *i;
     if (v < min || v > max) {
-      fail(key, "value " + std::to_string(v) + " out of range: must be in [" +
-                    std::to_string(min) + ", " + std::to_string(max) + "]");
+      fail(key,
+           "value " + std::to_string(v) + " out of range: must be in [" + std::to_string(min) +
+               ", " + std::to_string(max) + "]" +
+               (max_name.empty() ? std::string() : " (at most " + std::string(max_name) + ")"));
     }
   }
   if (out_ != nullptr) out_->insert_or_assign(key, static_cast<int64_t>(v));
@@ -334,7 +367,8 @@ std::string TableReader::resolve_path(const std::string& given) const {
   return fs::absolute(p).lexically_normal().string();
 }
 
-std::vector<std::string> TableReader::existing_file_list(std::string_view key, std::vector<std::string> fallback) {
+std::vector<std::string> TableReader::existing_file_list(std::string_view key,
+                                                         std::vector<std::string> fallback) {
   ReadScope scope(read_depth_);
   note_fact(key, "list of files", list_text(fallback), "relative to the scene file");
   namespace fs = std::filesystem;
@@ -342,7 +376,8 @@ std::vector<std::string> TableReader::existing_file_list(std::string_view key, s
   for (auto& given : v) {
     const std::string resolved = resolve_path(given);
     std::error_code ec;
-    if (!fs::is_regular_file(resolved, ec)) fail(key, "no such file: " + given + " (looked for " + resolved + ")");
+    if (!fs::is_regular_file(resolved, ec))
+      fail(key, "no such file: " + given + " (looked for " + resolved + ")");
     given = resolved;
   }
   if (out_ != nullptr) {
@@ -355,16 +390,24 @@ std::vector<std::string> TableReader::existing_file_list(std::string_view key, s
 
 std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::initializer_list<std::string_view> allowed) {
+  return choice(key, std::move(fallback),
+                std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string TableReader::choice(std::string_view key, std::string fallback,
+                                std::span<const std::string_view> allowed) {
   ReadScope scope(read_depth_);
   {
     std::string list;
-    for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
+    for (auto a : allowed)
+      list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
     note_fact(key, "one of", "\"" + fallback + "\"", list);
   }
   std::string v = string(key, std::move(fallback));
   if (std::find(allowed.begin(), allowed.end(), v) == allowed.end()) {
     std::string list;
-    for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
+    for (auto a : allowed)
+      list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
     fail(key, "\"" + v + "\" is not one of " + list);
   }
   return v;
@@ -373,13 +416,14 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
 std::vector<double> TableReader::number_list(std::string_view key, std::vector<double> fallback,
                                              Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "list of numbers", list_text(fallback), range.describe());
+  note_fact(key, "list of numbers", list_text(fallback), range.reference());
   mark(key);
   const toml::node* n = node(key);
   std::vector<double> v = std::move(fallback);
   if (n != nullptr) {
     const toml::array* arr = n->as_array();
-    if (arr == nullptr) fail(key, std::string("expected an array of numbers, got ") + type_name(*n));
+    if (arr == nullptr)
+      fail(key, std::string("expected an array of numbers, got ") + type_name(*n));
     v.clear();
     for (const auto& e : *arr) {
       double x = 0.0;
@@ -406,7 +450,8 @@ std::vector<double> TableReader::number_list(std::string_view key, std::vector<d
   return v;
 }
 
-std::vector<std::string> TableReader::string_list(std::string_view key, std::vector<std::string> fallback) {
+std::vector<std::string> TableReader::string_list(std::string_view key,
+                                                  std::vector<std::string> fallback) {
   ReadScope scope(read_depth_);
   note_fact(key, "list of strings", list_text(fallback));
   mark(key);
@@ -414,7 +459,8 @@ std::vector<std::string> TableReader::string_list(std::string_view key, std::vec
   std::vector<std::string> v = std::move(fallback);
   if (n != nullptr) {
     const toml::array* arr = n->as_array();
-    if (arr == nullptr) fail(key, std::string("expected an array of strings, got ") + type_name(*n));
+    if (arr == nullptr)
+      fail(key, std::string("expected an array of strings, got ") + type_name(*n));
     v.clear();
     for (const auto& e : *arr) {
       auto s = e.value_exact<std::string>();
@@ -436,14 +482,22 @@ TableReader TableReader::table(std::string_view key, bool required) {
   mark(key);
   const toml::node* n = node(key);
   if (n == nullptr && required) fail(key, "missing required table");
-  if (n != nullptr && !n->is_table()) fail(key, std::string("expected a table, got ") + type_name(*n));
+  if (n != nullptr && !n->is_table())
+    fail(key, std::string("expected a table, got ") + type_name(*n));
   toml::table* sub_out = nullptr;
   if (out_ != nullptr) {
     auto [it, inserted] = out_->insert(key, toml::table{});
     (void)inserted;
     sub_out = it->second.as_table();
   }
-  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, sub_out, context_);
+  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, sub_out,
+                     context_);
+}
+
+TableReader TableReader::lookahead(std::string_view key) const {
+  const toml::node* n = node(key);
+  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, nullptr,
+                     context_);
 }
 
 std::vector<TableReader> TableReader::table_array(std::string_view key) {
@@ -454,7 +508,8 @@ std::vector<TableReader> TableReader::table_array(std::string_view key) {
   const toml::node* n = node(key);
   if (n == nullptr) return result;
   const toml::array* arr = n->as_array();
-  if (arr == nullptr || !arr->is_array_of_tables()) fail(key, "expected an array of tables ([[...]])");
+  if (arr == nullptr || !arr->is_array_of_tables())
+    fail(key, "expected an array of tables ([[...]])");
   toml::array* out_arr = nullptr;
   if (out_ != nullptr) {
     auto [it, inserted] = out_->insert_or_assign(key, toml::array{});
@@ -473,11 +528,16 @@ std::vector<TableReader> TableReader::table_array(std::string_view key) {
   return result;
 }
 
+KeyFact* TableReader::recorded_fact(std::string_view key) {
+  return context_ != nullptr ? &context_->keys[reference_key(full_key(key))] : nullptr;
+}
+
 void TableReader::finish() const {
   if (table_ == nullptr) return;
   for (const auto& [k, v] : *table_) {
     if (std::find(read_.begin(), read_.end(), k.str()) == read_.end()) {
-      const bool known = declared_ && std::find(expected_.begin(), expected_.end(), k.str()) != expected_.end();
+      const bool known =
+          declared_ && std::find(expected_.begin(), expected_.end(), k.str()) != expected_.end();
       throw SceneError(where(&v, full_key(k.str())) + ": key '" + full_key(k.str()) + "': " +
                        (known ? "not used with the other settings of this scene" : "unknown key"));
     }
