@@ -107,7 +107,8 @@ std::optional<LayerFloor> read_layer_floor(TableReader& root) {
   TableReader layer = root.lookahead("particles").lookahead("layer");
   if (!layer.has("thickness")) return std::nullopt;
   LayerFloor floor;
-  floor.thickness = layer.required_number("thickness", Range::positive());
+  floor.thickness =
+      *layer.optional_number("thickness", Range::positive());  // present (has() above)
   floor.y_max = layer.number("y_max", LayerConfig{}.y_max);
   floor.y = floor.y_max - floor.thickness;
   return floor;
