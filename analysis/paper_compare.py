@@ -6,7 +6,7 @@ Usage: /usr/bin/python3 analysis/paper_compare.py RUN_DIR [--json OUT] [--time T
 Surface heights: h(x) at the stations, the lifting delay (the rule of
 insitu/lifting_delay.cpp: the distance from the shock back to where h first exceeds the
 undisturbed top by 0.1 mm; the median surface at t = 0, or the columns' top for a layer with
-a looser top) and the plateau are taken from the running median of h over
+a looser top; none once the shock is beyond the layer's x_max) and the plateau are taken from the running median of h over
 5 mm of x (20 columns of the paper grid); the delay of the raw columns is given too.
 
 RUN_DIR is an output folder of `dustlift run` (cases/paper/vertical_shock.toml or a study
@@ -95,9 +95,23 @@ def loose_top_surface(run):
     return None
 
 
-def lifting_delay(x, h, shock_x, top, threshold=LIFT_THRESHOLD):
+def layer_end(run):
+    """The layer's downstream end particles.layer.x_max of a run (its scene.resolved.toml),
+    or infinity when the file or the key is missing."""
+    path = os.path.join(run, "scene.resolved.toml")
+    if not os.path.exists(path):
+        return math.inf
+    with open(path, "rb") as f:
+        layer = tomllib.load(f).get("particles", {}).get("layer", {})
+    return float(layer.get("x_max", math.inf))
+
+
+def lifting_delay(x, h, shock_x, top, x_max=math.inf, threshold=LIFT_THRESHOLD):
     """The same rule as insitu/lifting_delay.cpp: from the shock backwards, the first column
-    whose height exceeds top + threshold, interpolated to the crossing."""
+    whose height exceeds top + threshold, interpolated to the crossing; NaN once the shock
+    has left the layer (shock_x > x_max)."""
+    if not shock_x <= x_max:
+        return math.nan
     level = top + threshold
     below = None
     for k in range(len(x) - 1, -1, -1):
@@ -299,11 +313,12 @@ def compare(run, t_profile):
             inside = s <= x[-1] - 0.5 * SMOOTHING
             out["h_at_%03dmm_mm" % round(s * 1e3)] = float(np.interp(s, x, h)) * 1e3 if inside else math.nan
         xs = shock_at(shock, t) if shock is not None else math.nan
-        out["lifting_delay_mm"] = lifting_delay(x, h, xs, top) * 1e3
+        x_max = layer_end(run)
+        out["lifting_delay_mm"] = lifting_delay(x, h, xs, top, x_max) * 1e3
         # How much the delay owes to the threshold that says where lifting "begins" (the paper
         # reads it off its curves and states none): the rule at other lifts above the top.
         out["lifting_delay_by_threshold_mm"] = {
-            "%g mm" % (t * 1e3): lifting_delay(x, h, xs, top, threshold=t) * 1e3 for t in DELAY_THRESHOLDS}
+            "%g mm" % (t * 1e3): lifting_delay(x, h, xs, top, x_max, threshold=t) * 1e3 for t in DELAY_THRESHOLDS}
         # the lifted height: the highest surface between x = 50 mm (past the leading edge,
         # where the diffracted shock throws the layer up, Fig. 8) and the shock
         m = (x > 0.05) & (x < xs) & np.isfinite(h)
@@ -311,7 +326,7 @@ def compare(run, t_profile):
         out["profile_x_mm"] = (x * 1e3).tolist()
         out["profile_h_mm"] = ((h - top) * 1e3).tolist()
         out["profile_h_raw_mm"] = ((h_raw - top) * 1e3).tolist()
-        out["lifting_delay_raw_mm"] = lifting_delay(x, h_raw, xs, top) * 1e3
+        out["lifting_delay_raw_mm"] = lifting_delay(x, h_raw, xs, top, x_max) * 1e3
     for band in ("surface", "middle"):
         b = series(run, "forces_" + band)
         if b is not None and len(b["tau_s"]):

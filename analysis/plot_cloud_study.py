@@ -4,12 +4,14 @@
 Usage: /usr/bin/python3 analysis/plot_cloud_study.py SWEEPDIR [--out FILE] [--table FILE]
 
 Reads SWEEPDIR/summary.csv (the runs and their varied keys) and each run's
-series/dust_cloud.csv, and draws against time, one curve per run: the lifted share of the
-layer, the heights under which 90 % of the lifted mass lies, the lifted mass inside the
-explosible band of the filtered concentration, and the distances of the first and the
-densest lifted column behind the shock. Writes SWEEPDIR/dust_cloud.png
-(or --out) and prints a Markdown table of each run's cloud at its last output (also written
-to --table when given). Exits 1 when no run has a dust-cloud series.
+series/dust_cloud.csv, and draws against time, one curve per run: the lifted mass (g per
+metre of span: absolute, so runs with layers of different mass compare), the heights under
+which 90 % of the lifted mass lies, the lifted mass inside the explosible band of the filtered
+concentration, and the distances of the first and the densest lifted column behind the shock. Each run is labelled by its varied keys' last
+words and values with units ("thickness = 0.5 mm", analysis/sweep_labels.py). Writes
+SWEEPDIR/dust_cloud.png (or --out) and prints a Markdown table of each run's cloud at its
+last output, the lifted share of its own layer included (also written to --table when
+given). Exits 1 when no run has a dust-cloud series.
 """
 import argparse
 import os
@@ -22,11 +24,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from make_figures import read_series  # noqa: E402  (a series CSV -> dict of numpy columns)
 from plot_sweep import read_table  # noqa: E402  (a CSV -> dict of column -> list of strings)
-
-
-def label_of(row, keys):
-    """'initial_mach=1.5' style label from the varied keys' values."""
-    return ", ".join("%s = %s" % (k.split("_")[-1], row[k]) for k in keys)
+from sweep_labels import run_labels  # noqa: E402  ("thickness = 0.5 mm" per run)
 
 
 def main(argv):
@@ -36,31 +34,28 @@ def main(argv):
     parser.add_argument("--table", help="also write the Markdown table here")
     args = parser.parse_args(argv)
     summary = read_table(os.path.join(args.sweepdir, "summary.csv"))
-    header = list(summary)
-    keys = header[1:header.index("run_index_1")]
+    labels = run_labels(args.sweepdir, summary)
     runs = []
-    for k in range(len(summary["run"])):
-        row = {name: summary[name][k] for name in header}
-        path = os.path.join(args.sweepdir, row["run"], "series", "dust_cloud.csv")
+    for k, run in enumerate(summary["run"]):
+        path = os.path.join(args.sweepdir, run, "series", "dust_cloud.csv")
         if os.path.exists(path):
-            runs.append((row, read_series(path)))
+            runs.append((labels[k], read_series(path)))
     if not runs:
         print("plot_cloud_study.py: no run in %s has a dust-cloud series" % args.sweepdir, file=sys.stderr)
         return 1
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True)
-    for k, (row, s) in enumerate(runs):
+    for k, (label, s) in enumerate(runs):
         t = s["time_s"] * 1e3
-        label = label_of(row, keys)
         colour = "C%d" % k
-        axes[0, 0].plot(t, s["lifted_share_1"] * 100.0, ".-", color=colour, label=label)
+        axes[0, 0].plot(t, s["lifted_mass_kg_per_m"] * 1e3, ".-", color=colour, label=label)
         axes[0, 1].plot(t, s["height_p90_m"] * 1e3, ".-", color=colour, label=label)
         axes[1, 0].plot(t, s["explosible_mass_kg_per_m"] * 1e3, ".-", color=colour, label=label)
         axes[1, 1].plot(t, s["first_lifted_behind_shock_m"] * 1e3, ".-", color=colour,
                         label=label + ": first lifted column")
         axes[1, 1].plot(t, s["densest_lifted_behind_shock_m"] * 1e3, ".--", color=colour,
                         label=label + ": densest lifted column")
-    titles = [("Lifted share of the layer's mass", "lifted share [%]"),
+    titles = [("Lifted dust mass", "lifted mass [g per m of span]"),
               ("Height holding 90 % of the lifted mass", "height above layer top [mm]"),
               ("Lifted mass inside the explosible band (filtered concentration)", "mass [g per m of span]"),
               ("Lifted columns behind the shock", "distance behind the shock [mm]")]
@@ -82,11 +77,11 @@ def main(argv):
              "explosible mass [g/m] / area [mm²] (filter [mm]) | entrainment rate [kg/(m s)] | "
              "lifted T max / mean [K] | first / densest lifted column behind shock [mm] |",
              "|---|---|---|---|---|---|---|---|---|---|"]
-    for row, s in runs:
+    for label, s in runs:
         k = -1
         lines.append("| %s | %.3f | %.3g | %.3g | %.3g / %.3g / %.3g | %.3g | %.3g / %.3g (%.3g) | %.3g "
                      "| %.1f / %.1f | %.3g / %.3g |" % (
-            label_of(row, keys), s["time_s"][k] * 1e3, s["lifted_mass_kg_per_m"][k] * 1e3,
+            label, s["time_s"][k] * 1e3, s["lifted_mass_kg_per_m"][k] * 1e3,
             s["lifted_share_1"][k] * 100.0, s["height_p50_m"][k] * 1e3, s["height_p90_m"][k] * 1e3,
             s["height_p99_m"][k] * 1e3, s["cloud_top_m"][k] * 1e3, s["explosible_mass_kg_per_m"][k] * 1e3,
             s["explosible_area_m2"][k] * 1e6, s["filter_width_m"][k] * 1e3,

@@ -7,8 +7,8 @@ Reads DIR/summary.csv (one row per run: its folder, the varied keys, exit status
 each run's DIR/<run>/series/surface_height.csv and shock_position.csv, and writes one PNG
 (default DIR/surface_height.png) with two panels at each run's last output time: h against
 x, and h against the distance behind the shock (x_shock - x), the frame in which runs of
-different shock speeds or lengths compare. Curves are labelled by the varied values (the
-last part of each key); a run that failed (exit status 3) is drawn dashed up to where it got.
+different shock speeds or lengths compare. Curves are labelled by the varied keys' last
+words and values with units ("thickness = 0.5 mm", analysis/sweep_labels.py); a run that failed (exit status 3) is drawn dashed up to where it got.
 """
 import argparse
 import csv
@@ -20,6 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sweep_labels import run_labels  # noqa: E402  ("thickness = 0.5 mm" per run)
 
 
 def read_table(path):
@@ -70,8 +73,7 @@ def main(argv):
         print(f"plot_sweep: no {summary_path}", file=sys.stderr)
         return 2
     summary = read_table(summary_path)
-    header = list(summary.keys())
-    keys = header[1:header.index("run_index_1")]
+    labels = run_labels(args.dir, summary)
 
     fig, (ax_x, ax_s) = plt.subplots(2, 1, figsize=(8, 7.5))
     drawn = 0
@@ -84,7 +86,7 @@ def main(argv):
         t, x, h = profile
         xs = shock_at(run_dir, t)
         failed = summary["exit_status_1"][k] not in ("0", "0.0")
-        label = ", ".join(f"{key.split('.')[-1]}={summary[key][k]}" for key in keys)
+        label = labels[k]
         if failed:
             label += f" (exit {summary['exit_status_1'][k]} at t={t * 1e3:.3g} ms)"
         style = "--" if failed else "-"

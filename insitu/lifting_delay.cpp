@@ -7,11 +7,12 @@
 namespace dustlift {
 
 double lifting_delay_distance(std::span<const double> x_centers, std::span<const double> heights,
-                              double shock_x, double layer_top, double lift_threshold) {
+                              double shock_x, double layer_top, double layer_x_max,
+                              double lift_threshold) {
   if (x_centers.size() != heights.size())
     throw std::invalid_argument("lifting_delay_distance: one height per column centre needed");
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (!std::isfinite(shock_x)) return nan;
+  if (!std::isfinite(shock_x) || shock_x > layer_x_max) return nan;
   const double level = layer_top + lift_threshold;
   // k: the column nearest behind the shock still below the level (NaN columns have no dust
   // and neither start nor interrupt a rise).

@@ -15,9 +15,11 @@ inline constexpr double kDefaultLiftThreshold = 0.25e-3;
 /// column has no particles), finds the first place where h rises above layer_top +
 /// lift_threshold (linear interpolation between the two columns around the crossing) and
 /// returns shock_x minus that x. Columns ahead of the shock are ignored. NaN when the
-/// surface nowhere behind the shock rises that high, or shock_x is not finite.
+/// surface nowhere behind the shock rises that high, when shock_x is not finite, or when
+/// the shock has left the layer (shock_x > layer_x_max, the layer's downstream end): the
+/// delay is a distance behind a shock that still runs over dust.
 double lifting_delay_distance(std::span<const double> x_centers, std::span<const double> heights,
-                              double shock_x, double layer_top,
+                              double shock_x, double layer_top, double layer_x_max,
                               double lift_threshold = kDefaultLiftThreshold);
 
 }  // namespace dustlift

@@ -187,6 +187,10 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     log.line(fmt::format(
         "dustlift: interrupted by {} at t = {:.6e} s after {} steps; checkpoint written to {}",
         outcome.signal, sim.time(), sim.step(), checkpoint_path));
+    if (const int joined = InterruptHandler::joined_signals(); joined > 0)
+      log.line(fmt::format(
+          "dustlift: {} more signal(s) within {} ms of the first counted as the same stop request",
+          joined, kStopSignalWindow.count()));
     log.line(fmt::format("continue with: dustlift run --restart {}", checkpoint_path));
   } else if (outcome.exit_code == kExitSuccess) {
     log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(),

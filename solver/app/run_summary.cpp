@@ -45,8 +45,8 @@ ForcePeak signed_extreme(const SeriesTable& t, int tau_column, int value_column)
 
 }  // namespace
 
-RunResults summarise_run(const std::string& folder, const Scene& scene, const std::vector<double>& stations,
-                         double lift_threshold) {
+RunResults summarise_run(const std::string& folder, const Scene& scene,
+                         const std::vector<double>& stations, double lift_threshold) {
   const std::string h5 = (std::filesystem::path(folder) / "series" / "series.h5").string();
   RunResults r;
   r.profile_time = r.shock_x = r.lifting_delay = r.layer_top = kNaN;
@@ -75,7 +75,8 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
       layer_top = first[first.size() / 2];
     }
     r.layer_top = layer_top;
-    for (std::size_t s = 0; s < stations.size(); ++s) r.heights[s] = height_at_station(xs, hs, stations[s]);
+    for (std::size_t s = 0; s < stations.size(); ++s)
+      r.heights[s] = height_at_station(xs, hs, stations[s]);
   }
   // The shock when the surface profile was taken (the last sample at or before it).
   if (const auto shock = read_if_present(h5, "shock_position"); shock && shock->rows() > 0) {
@@ -83,7 +84,8 @@ RunResults summarise_run(const std::string& folder, const Scene& scene, const st
       if (!(shock->column(0)[k] > r.profile_time)) r.shock_x = shock->column(1)[k];
   }
   if (!xs.empty() && std::isfinite(r.shock_x)) {
-    r.lifting_delay = lifting_delay_distance(xs, hs, r.shock_x, layer_top, lift_threshold);
+    r.lifting_delay = lifting_delay_distance(xs, hs, r.shock_x, layer_top,
+                                             scene.particles.layer.x_max, lift_threshold);
   }
   r.cloud.assign(kSummaryCloudColumns.size(), kNaN);
   if (const auto cloud = read_if_present(h5, "dust_cloud"); cloud && cloud->rows() > 0) {

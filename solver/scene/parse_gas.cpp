@@ -30,6 +30,7 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
   t.expect_keys({"p", "rho", "T", "u", "v"});
   PrimitiveState s;
   s.p = t.required_number("p", Range::positive());
+  check_plausible_pressure(t, "p", s.p);
   s.u = t.number("u", 0.0);
   s.v = t.number("v", 0.0);
   const bool has_rho = t.has("rho"), has_T = t.has("T");
@@ -40,6 +41,7 @@ PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo) {
   } else {
     // p = rho R T (eq. 4) holds for both thermodynamic models.
     const double T = t.required_number("T", Range::positive());
+    check_plausible_temperature(t, "T", T);
     check_gas_temperature(t, "T", T, thermo);
     s.rho = s.p / (thermo.gas_constant * T);
     s.T = T;  // kept exactly: p / (rho R) would differ from it in the last bit

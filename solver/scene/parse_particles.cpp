@@ -4,14 +4,16 @@
 // in docs/dem.md.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "solver/dem/coarse_graining.hpp"
+#include "solver/laws/contact.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/size_distribution.hpp"
-#include "solver/laws/contact.hpp"
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
@@ -83,17 +85,38 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
   return c;
 }
 
+/// The key reference's default of volume_fraction: a generated layer's, optional for a file.
+void note_volume_fraction_default(TableReader& lt) {
+  if (KeyFact* f = lt.recorded_fact("volume_fraction"))
+    f->fallback =
+        fmt::format("{:g} (with arrangement = \"file\": optional)", LayerConfig{}.volume_fraction);
+}
+
 LayerArrangement parse_arrangement(TableReader& lt) {
-  const std::string name = lt.string("arrangement", "jittered_lattice");
-  std::string allowed;
-  for (const auto& [known, value] : kLayerArrangementNames) {
+  std::array<std::string_view, kLayerArrangementNames.size()> names;
+  for (std::size_t k = 0; k < names.size(); ++k) names[k] = kLayerArrangementNames[k].first;
+  const std::string name = lt.choice("arrangement", "jittered_lattice", names);
+  for (const auto& [known, value] : kLayerArrangementNames)
     if (known == name) return value;
-    allowed += (allowed.empty() ? "\"" : ", \"") + std::string(known) + "\"";
-  }
-  lt.fail("arrangement", "\"" + name + "\" is not one of " + allowed);
+  throw std::logic_error("parse_arrangement: a name choice() accepted has no arrangement");
 }
 
 }  // namespace
+
+std::optional<LayerFloor> read_layer_floor(TableReader& root) {
+  TableReader layer = root.lookahead("particles").lookahead("layer");
+  if (!layer.has("thickness")) return std::nullopt;
+  LayerFloor floor;
+  floor.thickness =
+      *layer.optional_number("thickness", Range::positive());  // present (has() above)
+  floor.y_max = layer.number("y_max", LayerConfig{}.y_max);
+  floor.y = floor.y_max - floor.thickness;
+  return floor;
+}
+
+bool agrees_with_floor(double y, const LayerFloor& floor) {
+  return std::abs(y - floor.y) <= 1e-9 * (floor.thickness + std::abs(floor.y_max));
+}
 
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                      const BoundaryConfig& boundary) {
@@ -101,6 +124,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                  "parcel_diameter", "layer", "real_per_parcel", "contact", "wall_contact",
                  "courant", "skin", "fast_skin_substeps", "gravity", "g", "size_distribution"});
   dem.enabled = t.boolean("enabled", t.present());
+  if (KeyFact* f = t.recorded_fact("enabled")) f->fallback = "true when [particles] is present";
   if (!dem.enabled) {
     // Switched off on purpose: the rest of the section (and the dust's coupling and output
     // keys) stays as written, unread, so one override turns the dust off.
@@ -132,6 +156,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   dem.density = t.required_number("density", Range::positive());
   dem.heat_capacity = t.number("heat_capacity", dem.heat_capacity, Range::positive());
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
+  check_plausible_temperature(t, "temperature", dem.initial_temperature);
   const bool parcel_diameter_given = t.has("parcel_diameter");
   dem.parcel_diameter =
       poly ? t.derived_number(
@@ -147,14 +172,29 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   const char* size_key = parcel_diameter_given ? "parcel_diameter" : "diameter";
 
   TableReader lt = t.table("layer");
-  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "arrangement", "settle", "seed",
+  lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "thickness", "arrangement", "settle", "seed",
                   "volume_fraction", "file", "loose_top_rows", "loose_top_fill"});
   LayerConfig& L = dem.layer;
   L.x_min = lt.number("x_min", L.x_min);
   L.x_max = lt.number("x_max", L.x_max);
   if (!(L.x_max > L.x_min)) lt.fail("x_max", "must be greater than x_min");
-  L.y_min = lt.number("y_min", L.y_min);
+  // The depth as one key: the bottom (and the floor, grid.y.start) follow from the top.
+  const std::optional<double> thickness = lt.optional_number("thickness", Range::positive());
   L.y_max = lt.number("y_max", L.y_max);
+  if (thickness) {
+    const LayerFloor floor{L.y_max - *thickness, *thickness, L.y_max};
+    L.y_min = lt.derived_number("y_min", floor.y, "particles.layer.thickness (y_max - thickness)");
+    if (lt.has("y_min") && !agrees_with_floor(L.y_min, floor))
+      lt.fail(
+          "y_min",
+          fmt::format(
+              "{:.9g} m contradicts particles.layer.thickness = {:.9g} m, which puts the layer's "
+              "bottom at y_max - thickness = {:.9g} m: give either particles.layer.y_min or "
+              "particles.layer.thickness",
+              L.y_min, *thickness, floor.y));
+  } else {
+    L.y_min = lt.number("y_min", L.y_min);
+  }
   if (!(L.y_max > L.y_min)) lt.fail("y_max", "must be greater than y_min");
   L.arrangement = parse_arrangement(lt);
   const bool settled = L.arrangement == LayerArrangement::Settled;
@@ -179,6 +219,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
         lt.fail(key, "not used with arrangement = \"file\" (thin the file's rows instead)");
     }
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
+    note_volume_fraction_default(lt);
     const ParcelFileLimits limits{
         grid.x.start,          grid.x.end,
         grid.y.start,          grid.y.end,
@@ -210,6 +251,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     }
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
+    note_volume_fraction_default(lt);
     L.seed = static_cast<std::uint64_t>(
         lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
     // Before the lattice is planned (it is sized by the parcel count): the parcels must fit
@@ -232,7 +274,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
       lt.fail("volume_fraction", e.what());
     }
     // A looser top: the top rows keep a share of their sites (docs/dem.md, "A looser top").
-    L.loose_top_rows = static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows));
+    L.loose_top_rows =
+        static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows, "the layer's rows"));
     L.loose_top_fill = lt.number("loose_top_fill", 1.0, Range::open_closed(0.0, 1.0));
     if (L.loose_top_fill != 1.0 && L.loose_top_rows == 0) {
       lt.fail("loose_top_fill", "needs loose_top_rows > 0 (the rows it thins)");
@@ -341,6 +384,9 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     dem.gravity_x = 0.0;
     dem.gravity_y = -g;
   }
+  // Either form, whichever this scene used.
+  if (KeyFact* f = t.recorded_fact("gravity"))
+    *f = KeyFact{"boolean or list of numbers", "false", "true (g along -y), false, or [g_x, g_y]"};
   t.finish();
 }
 

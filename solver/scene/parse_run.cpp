@@ -13,7 +13,7 @@ namespace dustlift::scene_detail {
 
 void parse_run(TableReader t, RunConfig& run) {
   t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest",
-                 "rest_tolerance", "rebalance_steps"});
+                 "rest_tolerance", "rebalance_steps", "allow_implausible"});
   run.name = t.string("name", run.name);
   run.end_time = t.required_number("end_time", Range::positive());
   run.max_steps = t.integer("max_steps", 0, 0, 1'000'000'000'000LL);
@@ -25,14 +25,37 @@ void parse_run(TableReader t, RunConfig& run) {
     t.fail("rest_tolerance",
            "needs skip_at_rest = true (it widens what skipping counts as at rest)");
   run.rebalance_steps = t.integer("rebalance_steps", run.rebalance_steps, 0, 1'000'000'000'000LL);
+  run.allow_implausible = t.boolean("allow_implausible", run.allow_implausible);
   t.finish();
 }
 
-static AxisSpec parse_axis(TableReader t) {
+/// One axis. The y axis (`vertical`) starts at the floor, which follows `floor` (a scene with
+/// particles.layer.thickness) unless grid.y.start is given.
+static AxisSpec parse_axis(TableReader t, bool vertical,
+                           const std::optional<LayerFloor>& floor = std::nullopt) {
   t.expect_keys({"start", "end", "cells", "cell_size", "uniform_start", "uniform_end",
                  "cells_below", "cells_above"});
   AxisSpec a;
-  a.start = t.required_number("start");
+  if (vertical && !floor && !t.has("start"))
+    t.fail("start",
+           "missing: give grid.y.start (the floor, m), or particles.layer.thickness (the floor is "
+           "then "
+           "the layer's bottom)");
+  if (floor) {
+    a.start = t.derived_number(
+        "start", floor->y,
+        "particles.layer.thickness (the floor is the layer's bottom, y_max - thickness)");
+    if (t.has("start") && !agrees_with_floor(a.start, *floor))
+      t.fail(
+          "start",
+          fmt::format(
+              "{:.9g} m contradicts particles.layer.thickness = {:.9g} m: the floor is the layer's "
+              "bottom, particles.layer.y_max - thickness = {:.9g} m; leave grid.y.start out (it "
+              "follows the thickness) or give particles.layer.y_min instead of the thickness",
+              a.start, floor->thickness, floor->y));
+  } else {
+    a.start = t.required_number("start");
+  }
   a.end = t.required_number("end");
   if (!(a.end > a.start)) t.fail("end", "must be greater than start");
   if (t.has("cell_size")) {
@@ -58,11 +81,11 @@ static AxisSpec parse_axis(TableReader t) {
   return a;
 }
 
-void parse_grid(TableReader t, GridConfig& grid) {
+void parse_grid(TableReader t, GridConfig& grid, const std::optional<LayerFloor>& floor) {
   t.expect_keys({"x", "y"});
   TableReader tx = t.table("x", true), ty = t.table("y", true);
-  grid.x = parse_axis(tx);
-  grid.y = parse_axis(ty);
+  grid.x = parse_axis(tx, false);
+  grid.y = parse_axis(ty, true, floor);
   // Before anything is allocated: the whole grid must fit the machine.
   const std::size_t nx = build_axis_nodes(grid.x).size() - 1,
                     ny = build_axis_nodes(grid.y).size() - 1;
@@ -134,18 +157,24 @@ void parse_probes(TableReader& t, OutputConfig& out, const GridConfig& grid, boo
     for (const ProbeConfig& other : out.probes) {
       if (other.name == c.name) p.fail("name", "\"" + c.name + "\" names another probe too");
     }
-    c.x = p.required_number("x", Range::closed(grid.x.start, grid.x.end));
-    c.y = p.required_number("y", Range::closed(grid.y.start, grid.y.end));
+    c.x = p.required_number(
+        "x", Range::closed(grid.x.start, grid.x.end).named("in [grid.x.start, grid.x.end]"));
+    c.y = p.required_number(
+        "y", Range::closed(grid.y.start, grid.y.end).named("in [grid.y.start, grid.y.end]"));
     std::vector<std::string> fields;
     for (const ProbeField& f : kProbeFields) {
       if (std::string(f.name) != "mach" && (particles || std::string(f.name) != "alpha_p"))
         fields.emplace_back(f.name);
     }
     c.fields = p.string_list("fields", fields);
+    std::string allowed;
+    for (const ProbeField& k : kProbeFields)
+      allowed += (allowed.empty() ? "\"" : ", \"") + std::string(k.name) + "\"";
+    if (KeyFact* f = p.recorded_fact("fields")) f->range = "each one of " + allowed;
     for (const std::string& f : c.fields) {
       const bool known = std::any_of(std::begin(kProbeFields), std::end(kProbeFields),
                                      [&](const ProbeField& k) { return f == k.name; });
-      if (!known) p.fail("fields", "\"" + f + "\" is not one of p, rho, u, v, T, mach, alpha_p");
+      if (!known) p.fail("fields", "\"" + f + "\" is not one of " + allowed);
     }
     if (c.fields.empty()) p.fail("fields", "a probe needs at least one field");
     p.finish();

@@ -1,6 +1,8 @@
 #pragma once
 // Internal: one parse function per scene section, each in its own file.
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include "solver/scene/scene.hpp"
@@ -15,14 +17,30 @@ inline constexpr double kMinCourant = 1e-3;
 /// comes out a rounding smaller than the 0.002 m parcel that is meant to fit it.
 inline constexpr double kCellTolerance = 1e-9;
 
+/// The floor a layer thickness sets (particles.layer.thickness): the layer's bottom
+/// y_max - thickness, which is particles.layer.y_min and grid.y.start unless given.
+struct LayerFloor {
+  double y = 0.0;          ///< m, the floor: y_max - thickness
+  double thickness = 0.0;  ///< m
+  double y_max = 0.0;      ///< m, the layer's top
+};
+/// particles.layer.thickness and y_max when the scene gives a thickness (else nothing); read
+/// before the grid, whose floor follows it.
+std::optional<LayerFloor> read_layer_floor(TableReader& root);
+/// Whether a given y agrees with the floor the thickness sets (to rounding).
+bool agrees_with_floor(double y, const LayerFloor& floor);
+
 void parse_run(TableReader t, RunConfig& run);
-void parse_grid(TableReader t, GridConfig& grid);
+void parse_grid(TableReader t, GridConfig& grid, const std::optional<LayerFloor>& floor);
 void parse_gas(TableReader t, GasConfig& gas);
 void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo);
-void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo, const GridConfig& grid);
-void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid, const BoundaryConfig& boundary);
+void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo,
+                   const GridConfig& grid);
+void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
+                     const BoundaryConfig& boundary);
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
-void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem, const GridConfig& grid);
+void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
+                  const GridConfig& grid);
 void parse_insitu(TableReader t, InsituConfig& insitu);
 
 /// [particles.size_distribution] read: its classes, and the keys its errors name (the one
@@ -51,8 +69,17 @@ double min_cell_width(const GridConfig& grid);
 /// a temperature within the NASA-7 fits.
 PrimitiveState parse_state(TableReader t, const ThermoConfig& thermo);
 
+/// Plausibility of a value's unit: a gas pressure below 1 kPa or a temperature below 100 K is
+/// refused (naming the key, where it is, the value in Pa or K and what was probably meant)
+/// unless the scene sets run.allow_implausible = true (docs/reference/scene-keys.md).
+inline constexpr double kPlausiblePressureMin = 1.0e3;     ///< Pa
+inline constexpr double kPlausibleTemperatureMin = 100.0;  ///< K
+void check_plausible_pressure(TableReader& t, std::string_view key, double p);
+void check_plausible_temperature(TableReader& t, std::string_view key, double T);
+
 /// Refuses a temperature outside the fits of thermally perfect air (NASA-7, 200-6000 K),
 /// naming `key` of `t`; any positive temperature for a calorically perfect gas.
-void check_gas_temperature(TableReader& t, std::string_view key, double T, const ThermoConfig& thermo);
+void check_gas_temperature(TableReader& t, std::string_view key, double T,
+                           const ThermoConfig& thermo);
 
 }  // namespace dustlift::scene_detail

@@ -29,6 +29,9 @@ struct RunConfig {
   /// are below that velocity and its temperature within tol: the rounding noise that runs
   /// ahead of a shock is then skipped too. Changes results at the level of that noise.
   double rest_tolerance = 0.0;
+  /// Accept values outside the plausible range of their unit (a gas pressure below 1 kPa, a
+  /// temperature below 100 K), which are otherwise refused as a probable unit slip.
+  bool allow_implausible = false;
   /// Steps between moves of the slab cuts of a run on several MPI ranks (0: never), which
   /// follow the work as the shock moves (docs/parallel.md). No effect on one rank, and none
   /// on the results on any number of ranks.

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 
 namespace dustlift {
@@ -23,6 +24,9 @@ constexpr SceneKeyDoc kDocs[] = {
      "MPI rank)"},
     {"run.rebalance_steps", "1",
      "MPI: steps between moves of the slab cuts that follow the work (0: never)"},
+    {"run.allow_implausible", "",
+     "accept a gas pressure below 1 kPa or a temperature below 100 K (refused otherwise as a "
+     "probable unit slip)"},
     // [grid]
     {"grid", "", "the rectilinear grid: [grid.x] along the channel, [grid.y] up"},
     {"grid.*", "",
@@ -104,6 +108,9 @@ constexpr SceneKeyDoc kDocs[] = {
     {"particles.layer.x_max", "m", "the layer's downstream end"},
     {"particles.layer.y_min", "m", "the layer's bottom"},
     {"particles.layer.y_max", "m", "the layer's top (heights in the outputs count from it)"},
+    {"particles.layer.thickness", "m",
+     "the layer's depth: y_min = y_max - thickness, and the floor grid.y.start follows (give "
+     "thickness or y_min)"},
     {"particles.layer.volume_fraction", "1",
      "3-D solid volume fraction of the layer (the parcels' 2-D areal fraction equals it)"},
     {"particles.layer.arrangement", "",
@@ -270,15 +277,63 @@ std::string cell(const std::string& s) {
 
 /// The reference's default of a key whose scenes record different ones (`earlier` merged
 /// first): required unless another key gives it (a size distribution, a restitution); a
-/// derived text says more than a literal that follows other keys (the later one wins).
+/// literal default that another key can replace keeps both ("-0.002, or from ..."); of two
+/// derived texts the later one wins.
 std::string combined_fallback(const std::string& earlier, const std::string& later) {
   const auto derived = [](const std::string& f) { return f.rfind("from ", 0) == 0; };
+  // A value a scene gets when it leaves the key out (not a placeholder such as [] or none).
+  const auto literal = [&](const std::string& f) {
+    return !derived(f) && f != "required" && f != "optional" && f != "none" && f != "[]" &&
+           f != "\"\"" && f.find(", or ") == std::string::npos;
+  };
   if (earlier.rfind("required, or ", 0) == 0) return earlier;
   if (earlier == "required" && derived(later)) return "required, or " + later;
   if (later == "required" && derived(earlier)) return "required, or " + earlier;
+  if (literal(earlier) && derived(later)) return earlier + ", or " + later;
+  if (derived(earlier) && literal(later)) return later + ", or " + earlier;
+  if (earlier.find(", or ") != std::string::npos && (derived(later) || literal(later)))
+    return earlier;
   if (derived(later)) return later;
   if (derived(earlier)) return earlier;
   return "depends on the scene";
+}
+
+/// `text` with the names a key's wildcard segments stand for written as the pattern writes
+/// them: for grid.y.uniform_start (pattern grid.*.uniform_start), "from grid.y.start" reads
+/// "from grid.*.start", the same axis's start.
+std::string generic_text(std::string text, std::string_view pattern, std::string_view key) {
+  std::string concrete, generic;
+  while (true) {
+    const std::size_t p = pattern.find('.'), k = key.find('.');
+    const std::string_view ps = pattern.substr(0, p), ks = key.substr(0, k);
+    concrete += std::string(ks) + ".";
+    generic += std::string(ps) + ".";
+    if (ps == "*" && concrete != generic) {
+      for (std::size_t at = text.find(concrete); at != std::string::npos;
+           at = text.find(concrete, at + generic.size()))
+        text.replace(at, concrete.size(), generic);
+    }
+    if (p == std::string_view::npos || k == std::string_view::npos) break;
+    pattern.remove_prefix(p + 1);
+    key.remove_prefix(k + 1);
+  }
+  return text;
+}
+
+KeyFact generic_fact(const KeyFact& f, std::string_view pattern, std::string_view key) {
+  return KeyFact{f.kind, generic_text(f.fallback, pattern, key),
+                 generic_text(f.range, pattern, key)};
+}
+
+bool same_fact(const KeyFact& a, const KeyFact& b) {
+  return a.kind == b.kind && a.fallback == b.fallback && a.range == b.range;
+}
+
+/// A section's heading: the table, or for the gas states' keys (*.*.p, ...) what they are.
+std::string section_title(const std::string& top) {
+  if (top == "*")
+    return "A gas state: `initial.state`, `initial.left`, `initial.right`, `boundary.inflow`";
+  return "[" + top + "]";
 }
 
 }  // namespace
@@ -309,7 +364,8 @@ void merge_key_facts(std::map<std::string, KeyFact>& into,
 }
 
 std::string key_reference_markdown(const std::map<std::string, KeyFact>& facts) {
-  // One row per documented pattern, with the facts of the keys it matches.
+  // One row per documented pattern (or per key where the keys of a pattern differ), with the
+  // facts of the keys it matches.
   std::string out =
       "# Scene keys\n\n"
       "Every key a scene file (TOML) may hold: its type, unit, default and allowed values as the "
@@ -318,7 +374,11 @@ std::string key_reference_markdown(const std::map<std::string, KeyFact>& facts) 
       "(`dustlift info SCENE` prints the value it takes); \"required\" keys have none; "
       "\"optional\" sections and keys are used only when present. A `*` stands for any one name "
       "(`grid.*.cells`: `grid.x.cells`, `grid.y.cells`; `initial.*.p`: the pressure of "
-      "`initial.state`, `initial.left`, `initial.right`).\n\n"
+      "`initial.state`, `initial.left`, `initial.right`); in a default or a range it stands for "
+      "the same name as in the key (`grid.*.uniform_start` of the y axis comes from "
+      "`grid.y.start`). The allowed values are the limits the parser checks; limits set by other "
+      "keys are named by them. A gas pressure below 1 kPa and a temperature below 100 K are "
+      "refused as a probable slip of the unit (Pa, K) unless `run.allow_implausible = true`.\n\n"
       "Generated from the parser and the keys' documentation (`solver/scene/scene_keys.cpp`) by "
       "`bash scripts/scene-keys.sh`, which runs `dustlift info --keys` over the repository's "
       "scenes; a test fails when this file is stale. Do not edit it by hand.\n";
@@ -327,25 +387,37 @@ std::string key_reference_markdown(const std::map<std::string, KeyFact>& facts) 
   for (const auto& [key, fact] : facts)
     if (find_key_doc(key) == nullptr) undocumented.push_back(key);
   for (const SceneKeyDoc& d : kDocs) {
-    const KeyFact* fact = nullptr;
+    // The keys of this pattern that the scenes read, each with its facts written for the pattern.
+    std::vector<std::pair<std::string, KeyFact>> rows;
     for (const auto& [key, f] : facts)
-      if (matches(d.pattern, key) && find_key_doc(key) == &d &&
-          (fact == nullptr || fact->kind.empty()))
-        fact = &f;
-    if (fact == nullptr) continue;
+      if (matches(d.pattern, key) && find_key_doc(key) == &d && !f.kind.empty())
+        rows.emplace_back(key, generic_fact(f, d.pattern, key));
+    if (rows.empty()) continue;
+    // One row for the pattern when its keys agree; else one per key (grid.x.start is required,
+    // grid.y.start may follow the layer's thickness).
+    const bool agree = std::all_of(rows.begin(), rows.end(), [&](const auto& r) {
+      return same_fact(r.second, rows.front().second);
+    });
+    if (agree) {
+      rows.resize(1);
+      rows.front().first = std::string(d.pattern);
+    } else {
+      for (auto& [key, f] : rows) f = facts.at(key);
+    }
     const std::string pattern(d.pattern);
     const std::string top = pattern.substr(0, pattern.find('.'));
     if (top != section) {
       section = top;
       out += fmt::format(
-          "\n## [{}]\n\n| key | type | unit | default | allowed | meaning "
+          "\n## {}\n\n| key | type | unit | default | allowed | meaning "
           "|\n|---|---|---|---|---|---|\n",
-          section);
+          section_title(section));
     }
-    out +=
-        fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", pattern, cell(fact->kind),
-                    cell(std::string(d.unit)), cell(fact->fallback),
-                    cell(fact->range == "finite" ? "" : fact->range), cell(std::string(d.meaning)));
+    for (const auto& [key, fact] : rows)
+      out +=
+          fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", key, cell(fact.kind),
+                      cell(std::string(d.unit)), cell(fact.fallback),
+                      cell(fact.range == "finite" ? "" : fact.range), cell(std::string(d.meaning)));
   }
   if (!undocumented.empty()) {
     out += "\n## Undocumented\n\n";

@@ -1,3 +1,4 @@
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -87,7 +88,10 @@ Scene parse_scene_into(const std::string& text, const std::string& name,
       {"run", "grid", "gas", "boundary", "initial", "particles", "coupling", "output", "insitu"});
   using namespace scene_detail;
   parse_run(root.table("run"), scene.run);
-  parse_grid(root.table("grid", true), scene.grid);
+  context.allow_implausible = scene.run.allow_implausible;
+  // The floor may follow the layer's thickness (particles.layer.thickness): read before the grid.
+  const std::optional<LayerFloor> floor = read_layer_floor(root);
+  parse_grid(root.table("grid", true), scene.grid, floor);
   parse_gas(root.table("gas"), scene.gas);
   parse_boundary(root.table("boundary"), scene.gas.boundary, scene.gas.thermo);
   parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo, scene.grid);

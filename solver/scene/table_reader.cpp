@@ -192,7 +192,7 @@ bool TableReader::is_array(std::string_view key) const {
 double TableReader::derived_number(std::string_view key, double derived, const std::string& from,
                                    Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", "from " + from, range.describe());
+  note_fact(key, "number", "from " + from, range.reference());
   if (auto v = optional_number(key, range)) return *v;
   note_derived(key, toml_text(derived), from);
   return derived;
@@ -211,7 +211,7 @@ std::vector<double> TableReader::derived_number_list(std::string_view key,
                                                      const std::vector<double>& derived,
                                                      const std::string& from, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "list of numbers", "from " + from, range.describe());
+  note_fact(key, "list of numbers", "from " + from, range.reference());
   if (has(key)) return number_list(key, derived, range);
   mark(key);
   std::string text = "[";
@@ -251,7 +251,7 @@ static const char* type_name(const toml::node& n) {
 
 std::optional<double> TableReader::optional_number(std::string_view key, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", "optional", range.describe());
+  note_fact(key, "number", "optional", range.reference());
   mark(key);
   const toml::node* n = node(key);
   if (n == nullptr) return std::nullopt;
@@ -267,6 +267,7 @@ std::optional<double> TableReader::optional_number(std::string_view key, Range r
     std::ostringstream s;
     s.precision(10);
     s << "value " << v << " out of range: must be " << range.describe();
+    if (!range.bounds.empty()) s << ", i.e. " << range.bounds;
     fail(key, s.str());
   }
   if (out_ != nullptr) out_->insert_or_assign(key, v);
@@ -275,7 +276,7 @@ std::optional<double> TableReader::optional_number(std::string_view key, Range r
 
 double TableReader::number(std::string_view key, double fallback, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", toml_text(fallback), range.describe());
+  note_fact(key, "number", toml_text(fallback), range.reference());
   auto v = optional_number(key, range);
   if (!v) {
     if (out_ != nullptr) out_->insert_or_assign(key, fallback);
@@ -286,19 +287,20 @@ double TableReader::number(std::string_view key, double fallback, Range range) {
 
 double TableReader::required_number(std::string_view key, Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "number", "required", range.describe());
+  note_fact(key, "number", "required", range.reference());
   auto v = optional_number(key, range);
-  if (!v) fail(key, "missing required number (" + range.describe() + ")");
+  if (!v) fail(key, "missing required number (" + range.reference() + ")");
   return *v;
 }
 
 long long TableReader::integer(std::string_view key, long long fallback, long long min,
-                               long long max) {
+                               long long max, std::string_view max_name) {
   ReadScope scope(read_depth_);
   note_fact(key, "integer", std::to_string(fallback),
             "in [" + std::to_string(min) + ", " +
-                (max == std::numeric_limits<long long>::max() ? std::string("...")
-                                                              : std::to_string(max)) +
+                (!max_name.empty()                              ? std::string(max_name)
+                 : max == std::numeric_limits<long long>::max() ? std::string("...")
+                                                                : std::to_string(max)) +
                 "]");
   mark(key);
   const toml::node* n = node(key);
@@ -308,8 +310,10 @@ long long TableReader::integer(std::string_view key, long long fallback, long lo
     if (!i) fail(key, std::string("expected an integer, got ") + type_name(*n));
     v = *i;
     if (v < min || v > max) {
-      fail(key, "value " + std::to_string(v) + " out of range: must be in [" + std::to_string(min) +
-                    ", " + std::to_string(max) + "]");
+      fail(key,
+           "value " + std::to_string(v) + " out of range: must be in [" + std::to_string(min) +
+               ", " + std::to_string(max) + "]" +
+               (max_name.empty() ? std::string() : " (at most " + std::string(max_name) + ")"));
     }
   }
   if (out_ != nullptr) out_->insert_or_assign(key, static_cast<int64_t>(v));
@@ -386,6 +390,12 @@ std::vector<std::string> TableReader::existing_file_list(std::string_view key,
 
 std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::initializer_list<std::string_view> allowed) {
+  return choice(key, std::move(fallback),
+                std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string TableReader::choice(std::string_view key, std::string fallback,
+                                std::span<const std::string_view> allowed) {
   ReadScope scope(read_depth_);
   {
     std::string list;
@@ -406,7 +416,7 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
 std::vector<double> TableReader::number_list(std::string_view key, std::vector<double> fallback,
                                              Range range) {
   ReadScope scope(read_depth_);
-  note_fact(key, "list of numbers", list_text(fallback), range.describe());
+  note_fact(key, "list of numbers", list_text(fallback), range.reference());
   mark(key);
   const toml::node* n = node(key);
   std::vector<double> v = std::move(fallback);
@@ -484,6 +494,12 @@ TableReader TableReader::table(std::string_view key, bool required) {
                      context_);
 }
 
+TableReader TableReader::lookahead(std::string_view key) const {
+  const toml::node* n = node(key);
+  return TableReader(n != nullptr ? n->as_table() : nullptr, full_key(key), file_, nullptr,
+                     context_);
+}
+
 std::vector<TableReader> TableReader::table_array(std::string_view key) {
   ReadScope scope(read_depth_);
   note_fact(key, "array of tables", "none");
@@ -510,6 +526,10 @@ std::vector<TableReader> TableReader::table_array(std::string_view key) {
                         sub_out, context_);
   }
   return result;
+}
+
+KeyFact* TableReader::recorded_fact(std::string_view key) {
+  return context_ != nullptr ? &context_->keys[reference_key(full_key(key))] : nullptr;
 }
 
 void TableReader::finish() const {

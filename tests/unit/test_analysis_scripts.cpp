@@ -235,5 +235,88 @@ TEST_F(AnalysisScripts, AccuracyCostReportsEverySettingWithAFiniteErrorAndWallTi
   fs::remove_all(dir);
 }
 
+/// A sweep folder as `dustlift sweep` writes it, for the plotting scripts: summary.csv with
+/// the varied keys' columns, and per run its resolved scene and dust-cloud series (lifted
+/// mass `lifted` kg/m at the end, share `share`).
+void write_cloud_sweep(const fs::path& dir, const std::vector<std::string>& columns,
+                       const std::vector<std::pair<std::string, std::vector<std::string>>>& runs,
+                       const std::vector<std::string>& resolved, const std::vector<double>& lifted,
+                       const std::vector<double>& share) {
+  fs::create_directories(dir);
+  std::ofstream summary(dir / "summary.csv");
+  summary << "run";
+  for (const auto& c : columns) summary << "," << c;
+  summary << ",run_index_1,exit_status_1\n";
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    summary << "\"" << runs[r].first << "\"";  // quoted: a sweep's folder names hold commas
+    for (const auto& v : runs[r].second) summary << "," << v;
+    summary << "," << r << ",0\n";
+    const fs::path run = dir / runs[r].first;
+    fs::create_directories(run / "series");
+    std::ofstream(run / "scene.resolved.toml") << resolved[r];
+    std::ofstream cloud(run / "series" / "dust_cloud.csv");
+    cloud << "time_s,lifted_mass_kg_per_m,lifted_share_1,height_p50_m,height_p90_m,height_p99_m,"
+             "cloud_top_m,"
+             "explosible_area_m2,lifted_temperature_max_K,lifted_temperature_mean_K,first_lifted_"
+             "behind_shock_m,"
+             "densest_lifted_behind_shock_m,explosible_mass_kg_per_m,filter_width_m,"
+             "entrainment_rate_kg_per_m_s\n";
+    for (int k = 0; k <= 4; ++k) {
+      const double f = k / 4.0;
+      cloud << 0.05e-3 * k << "," << lifted[r] * f << "," << share[r] * f
+            << ",1e-4,1e-3,2e-3,3e-3,5e-5,330,305,0.02,0.09," << 0.1 * lifted[r] * f
+            << ",0.02,40\n";
+    }
+  }
+}
+
+TEST_F(AnalysisScripts, PlotCloudStudyComparesMassesUnderTheVariedKeysLastWords) {
+  // Layers of 0.5 and 1 mm: the thinner lifts a larger share but less mass. The plot and the
+  // table give the lifted mass in g per metre of span; each run is named by its varied keys'
+  // last words with the values in units ("thickness = 0.5 mm, mach = 1.5").
+  const auto dir = fresh_dir("cloud_study");
+  write_cloud_sweep(dir, {"particles_layer_thickness", "initial_mach"},
+                    {{"particles.layer.thickness=0.0005,initial.mach=1.5", {"0.0005", "1.5"}},
+                     {"particles.layer.thickness=0.001,initial.mach=1.5", {"0.001", "1.5"}}},
+                    {"[initial]\nmach = 1.5\n[particles.layer]\nthickness = 0.0005\n",
+                     "[initial]\nmach = 1.5\n[particles.layer]\nthickness = 0.001\n"},
+                    {4.0e-3, 6.0e-3}, {0.09, 0.07});
+  const auto [status, output] = run(script("plot_cloud_study.py") + " " + dir.string() +
+                                    " --table " + (dir / "table.md").string());
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("| thickness = 0.5 mm, mach = 1.5 | 0.200 | 4 | 9 |"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("| thickness = 1 mm, mach = 1.5 | 0.200 | 6 | 7 |"), std::string::npos)
+      << output;
+  EXPECT_GT(fs::file_size(dir / "dust_cloud.png"), 20'000u);
+  EXPECT_TRUE(fs::exists(dir / "table.md"));
+
+  // The issue's study: two keys changed together, each its own label item with its unit.
+  const auto both = dir / "both";
+  write_cloud_sweep(both, {"particles_layer_y_min", "grid_y_start"},
+                    {{"a", {"-0.00025", "-0.00025"}}, {"b", {"-0.0005", "-0.0005"}}},
+                    {"[grid.y]\nstart = -0.00025\n[particles.layer]\ny_min = -0.00025\n",
+                     "[grid.y]\nstart = -0.0005\n[particles.layer]\ny_min = -0.0005\n"},
+                    {1e-3, 2e-3}, {0.1, 0.1});
+  const auto [status2, output2] = run(script("plot_cloud_study.py") + " " + both.string());
+  ASSERT_EQ(status2, 0) << output2;
+  EXPECT_NE(output2.find("| y_min = -0.25 mm, start = -0.25 mm |"), std::string::npos) << output2;
+  EXPECT_EQ(output2.find("min = -0.00025"), std::string::npos) << output2;
+  // plot_sweep.py names its curves the same way (its runs have no surface series here).
+  const auto [status3, output3] =
+      run(std::string(kPython) + " -c 'import sys; sys.path.insert(0, \"" + DUSTLIFT_SOURCE_DIR +
+          "/analysis\"); from sweep_labels import short_names, value_text; "
+          "print(short_names([\"grid.x.start\", \"grid.y.start\", \"initial.mach\"]), "
+          "value_text(\"40e-6\", \"m\"), value_text(\"101325\", \"Pa\"), value_text(\"0.2e-3\", "
+          "\"s\"))'");
+  ASSERT_EQ(status3, 0) << output3;
+  EXPECT_NE(
+      output3.find("'grid.x.start': 'x.start', 'grid.y.start': 'y.start', 'initial.mach': 'mach'"),
+      std::string::npos)
+      << output3;
+  EXPECT_NE(output3.find("40 µm 101.325 kPa 0.2 ms"), std::string::npos) << output3;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace dustlift

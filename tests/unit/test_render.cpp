@@ -58,6 +58,10 @@ void write_synthetic_run(const fs::path& dir) {
         g.temperature[k] = behind ? 380.0 : 300.0;
         g.mach[k] = g.velocity_x[k] / 340.0;
         g.alpha_p[k] = yc[j] < 2e-3 ? 0.59 : 0.0;
+        // A dust cloud over the layer behind the shock, thinning upwards over decades.
+        g.dust_concentration[k] = yc[j] < 2e-3 ? 578.0
+                                  : behind     ? 578.0 * std::exp(-(yc[j] - 2e-3) / 0.4e-3)
+                                               : 0.0;
       }
     {
       const Grid2D grid(Axis(g.x_nodes, 2), Axis(g.y_nodes, 2));
@@ -259,6 +263,40 @@ TEST_F(Render, ShippedStateHasRelativePathsALiveTimeLabelAndADataDrivenRange) {
   EXPECT_GT(label, 20);
 }
 
+TEST_F(Render, AChosenFieldZoomedStretchedOnALogScaleHasTheRequestedSize) {
+  // The dust concentration on a log scale in a box over the layer's upstream part, y drawn
+  // twice as long, the parcels on top, at a requested size.
+  render(
+      "--field dust_concentration --log --x 0.0 0.03 --y 0.0 0.006 --stretch 2 --parcels --size "
+      "1000 500");
+  const fs::path png = dir_ / "figures" / "dust_concentration_000001.png";
+  expect_rendered(png);
+  const ImageCheck c = inspect_png(png);
+  EXPECT_EQ(c.width, 1000);
+  EXPECT_EQ(c.height, 500);
+  // The view's state: data named relative to the run, the zoom box, the log scale.
+  const std::string state = read_text(dir_ / "dust_concentration.pvsm");
+  EXPECT_NE(state.find("value=\"gas.pvd\""), std::string::npos);
+  EXPECT_EQ(state.find(dir_.string()), std::string::npos)
+      << "no absolute path of this run in the state";
+  EXPECT_NE(state.find("name=\"UseLogScale\""), std::string::npos);
+  EXPECT_NE(state.find("type=\"Clip\""), std::string::npos) << "the zoom box";
+  // The same field over the whole channel at another time: another image.
+  render("--field dust_concentration --log --size 1000 500 --time 0 --figures " +
+         (dir_ / "whole").string());
+  const fs::path whole = dir_ / "whole" / "dust_concentration_000000.png";
+  expect_rendered(whole);
+  EXPECT_GT(differing_pixels(png, whole), 50000) << "the zoom and the time change the picture";
+  // Options that need --field, and a box the wrong way round, are refused.
+  const std::string script = std::string(DUSTLIFT_SOURCE_DIR) + "/pvstates/render.py";
+  for (const char* bad : {"--log", "--x 0.03 0.0 --field mach", "--field nonsense"}) {
+    const std::string command = "bash " + std::string(DUSTLIFT_SOURCE_DIR) +
+                                "/scripts/with-xvfb.sh pvbatch " + script + " " + dir_.string() +
+                                " " + bad + " > /dev/null 2>&1";
+    EXPECT_NE(std::system(command.c_str()), 0) << bad;
+  }
+}
+
 TEST_F(Render, RunSceneScriptTakesPathsRelativeToTheCallersFolder) {
   // scene and output folder given relative to where the user stands, not to the repository.
   const fs::path cwd = dir_ / "user";
@@ -274,6 +312,16 @@ TEST_F(Render, RunSceneScriptTakesPathsRelativeToTheCallersFolder) {
   EXPECT_TRUE(fs::exists(cwd / "out" / "figures" / "shock_position.png"));
   expect_rendered(cwd / "out" / "figures" / "pressure_000004.png");
   EXPECT_TRUE(fs::exists(cwd / "out" / "pressure_parcels.pvsm"));
+  // Options after -- go to render.py: a chosen field in a zoom box.
+  const std::string field = "cd " + cwd.string() + " && bash " + std::string(DUSTLIFT_SOURCE_DIR) +
+                            "/scripts/run-scene.sh tube.toml out2 --set grid.x.cells=100 --threads "
+                            "1 -- --field density --x 0.3 0.8 "
+                            "--size 900 400 > script2.log 2>&1";
+  EXPECT_EQ(std::system(field.c_str()), 0) << read_text(cwd / "script2.log");
+  expect_rendered(cwd / "out2" / "figures" / "density_000004.png");
+  EXPECT_EQ(inspect_png(cwd / "out2" / "figures" / "density_000004.png").width, 900);
+  EXPECT_FALSE(fs::exists(cwd / "out2" / "figures" / "pressure_000004.png"))
+      << "the options replace the default views";
 }
 
 }  // namespace

@@ -63,6 +63,74 @@ TEST(SceneKeys, TheParserRecordsItsOwnDefaultsAndRanges) {
   EXPECT_EQ(facts.at("run.end_time").fallback, "required");
 }
 
+TEST(SceneKeys, TheReferenceRangesAreTheParsersLimitsNotOneScenesNumbers) {
+  // Every scene that reads a key records the same allowed range: a range set by other keys
+  // is named by them, not by the numbers of the scene that happened to be read.
+  std::map<std::string, std::pair<std::string, std::string>> first;  // key -> (range, scene)
+  for (const std::string& path : repository_scenes()) {
+    for (const auto& [key, fact] : read_scene_keys(path)) {
+      const auto [it, inserted] = first.try_emplace(key, fact.range, path);
+      if (!inserted && !fact.range.empty() && !it->second.first.empty()) {
+        EXPECT_EQ(fact.range, it->second.first)
+            << key << ": " << path << " against " << it->second.second;
+      }
+    }
+  }
+  const auto facts = repository_facts();
+  EXPECT_EQ(facts.at("output.probes.x").range, "in [grid.x.start, grid.x.end]");
+  EXPECT_EQ(facts.at("output.probes.y").range, "in [grid.y.start, grid.y.end]");
+  EXPECT_EQ(facts.at("particles.layer.loose_top_rows").range, "in [0, the layer's rows]");
+  // What the range says is what the parser accepts: a probe at x = 0.12 m in a channel to
+  // 0.15 m (the quickstart) is read; one beyond the channel is refused with its numbers.
+  const std::string scene = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml";
+  std::ifstream in(scene);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string probe = "\n[[output.probes]]\nname = \"gauge\"\ny = 0.001\nx = ";
+  EXPECT_DOUBLE_EQ(parse_scene(text.str() + probe + "0.12\n", scene).output.probes.at(0).x, 0.12);
+  try {
+    (void)parse_scene(text.str() + probe + "0.2\n", scene);
+    ADD_FAILURE() << "a probe outside the grid must be refused";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "value 0.2 out of range: must be in [-0.06, 0.15], i.e. in [grid.x.start, "
+                  "grid.x.end]"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneKeys, TypesChoicesAndPerAxisDefaultsAreRight) {
+  const auto facts = repository_facts();
+  // Every choice key lists its allowed values.
+  for (const auto& [key, fact] : facts)
+    if (fact.kind == "one of") {
+      EXPECT_FALSE(fact.range.empty()) << key;
+    }
+  EXPECT_EQ(facts.at("particles.layer.arrangement").kind, "one of");
+  EXPECT_EQ(
+      facts.at("particles.layer.arrangement").range,
+      "\"jittered_lattice\", \"lattice\", \"columnar\", \"hexagonal\", \"settled\", \"file\"");
+  EXPECT_EQ(facts.at("output.probes.fields").range,
+            "each one of \"p\", \"rho\", \"u\", \"v\", \"T\", \"mach\", \"alpha_p\"");
+  // A key of two forms has both in its type.
+  EXPECT_EQ(facts.at("particles.gravity").kind, "boolean or list of numbers");
+  // The derived-from text of each axis names that axis; the floor may follow the thickness.
+  EXPECT_EQ(facts.at("grid.x.uniform_start").fallback, "from grid.x.start");
+  EXPECT_EQ(facts.at("grid.y.uniform_start").fallback, "from grid.y.start");
+  const std::string md = key_reference_markdown(facts);
+  EXPECT_NE(md.find("| `grid.*.uniform_start` | number | m | from grid.*.start |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("from grid.x.start"), std::string::npos) << "no y-axis row may name the x axis";
+  EXPECT_NE(md.find("| `grid.x.start` | number | m | required |"), std::string::npos);
+  EXPECT_NE(md.find("| `grid.y.start` | number | m | required, or from particles.layer.thickness"),
+            std::string::npos);
+  EXPECT_NE(md.find("| `particles.layer.thickness` | number | m | optional | > 0 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| `run.allow_implausible` | boolean |  | false |"), std::string::npos);
+}
+
 TEST(SceneKeys, TheGeneratedReferenceIsUpToDate) {
   const std::string generated = key_reference_markdown(repository_facts());
   EXPECT_EQ(generated.find("## Undocumented"), std::string::npos) << generated;
