@@ -20,8 +20,13 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
       effects_(config),
       props_(std::make_unique<GasProperties>(gas)),
       stencils_(config.influence_width) {
-  for (const SizeClass& c : dem.size_classes)
+  largest_diameter_ = dem.particle_diameter;
+  for (const PlacedParcel& p : dem.layer_parcels)
+    largest_diameter_ = std::max(largest_diameter_, p.particle_diameter);
+  for (const SizeClass& c : dem.size_classes) {
     class_volume_.push_back(std::numbers::pi / 6.0 * std::pow(c.diameter, 3));
+    largest_diameter_ = std::max(largest_diameter_, c.diameter);
+  }
   make_fields();
 }
 

@@ -119,7 +119,7 @@ bool agrees_with_floor(double y, const LayerFloor& floor) {
 }
 
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
-                     const BoundaryConfig& boundary) {
+                     const BoundaryConfig& boundary, bool larger_than_cells) {
   t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature",
                  "parcel_diameter", "layer", "real_per_parcel", "contact", "wall_contact",
                  "courant", "skin", "fast_skin_substeps", "gravity", "g", "size_distribution"});
@@ -223,7 +223,9 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     const ParcelFileLimits limits{
         grid.x.start,          grid.x.end,
         grid.y.start,          grid.y.end,
-        dem.particle_diameter, min_cell_width(grid) * (1.0 + kCellTolerance)};
+        dem.particle_diameter,
+        larger_than_cells ? std::numeric_limits<double>::infinity()
+                          : min_cell_width(grid) * (1.0 + kCellTolerance)};
     const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter,    0.0,
                                 0.0, 0.0, dem.initial_temperature};
     dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
@@ -238,9 +240,11 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                        : equal_fraction_real_per_parcel(dem.parcel_diameter, dem.particle_diameter);
   } else {
     if (lt.has("file")) lt.fail("file", "only used with arrangement = \"file\"");
-    if (poly) check_class_sizes(dist, sd, dem, grid);  // before the plan, which needs them to fit
+    if (poly && !larger_than_cells) check_class_sizes(dist, sd, dem, grid);  // before the plan
     // A size in the wrong unit (40 for 40 um) would otherwise surface as a packing error.
-    const double depth = L.y_max - L.y_min, cell = min_cell_width(grid);
+    const double depth = L.y_max - L.y_min;
+    const double cell =
+        larger_than_cells ? std::numeric_limits<double>::infinity() : min_cell_width(grid);
     if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
       t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are "
                                    "in metres (40 um is 40e-6)",

@@ -72,7 +72,7 @@ void AddedMassEffect::coefficients(const ModelInput* in, std::size_t k0, std::si
     Vec2 fluid;
     if (resolved) {
       // The rates along the parcel's path since its last sample (none at the first).
-      const double mx = g.rho * g.u, my = g.rho * g.v;
+      const double mx = g.rho_u, my = g.rho_v;
       const double elapsed = step.time - sampled_at[k];
       const bool known = sampled[k] != 0.0 && elapsed > 0.0;
       const Vec2 along = known ? Vec2{(mx - rho_u[k]) / elapsed, (my - rho_v[k]) / elapsed} : Vec2{};

@@ -31,6 +31,9 @@ struct GasSample {
   double dpdx = 0.0, dpdy = 0.0;
   /// grad(rho u) and grad(rho v), the gas momentum's gradient
   double dx_rho_u = 0.0, dy_rho_u = 0.0, dx_rho_v = 0.0, dy_rho_v = 0.0;
+  /// The gas momentum at the parcel: rho u, rho v (their averages over the particle with
+  /// coupling.finite_size)
+  double rho_u = 0.0, rho_v = 0.0;
 };
 
 /// The parcel seen by the effects at the start of the CFD step.
