@@ -34,7 +34,7 @@
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_config.hpp"
-#include "solver/gas/gas_halo.hpp"
+#include "solver/coupling/gas_halo.hpp"
 #include "solver/gas/gas_solver.hpp"
 
 namespace dustlift {
