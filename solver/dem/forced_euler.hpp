@@ -145,8 +145,10 @@ double forced_euler(const EulerArrays& a, std::size_t n, double dt, std::index_s
   double* __restrict heat = a.heat;
   const double gx = a.gravity_x, gy = a.gravity_y, inv_c = a.inv_heat_capacity;
   double max_d2 = 0.0;
-#pragma omp parallel for simd schedule(static) reduction(max : max_d2) if (n >= kParallelMinimum)
-  for (std::size_t i = 0; i < n; ++i) {
+  // The body is a function of its own: its locals (the parcel, the parts), passed by reference to
+  // the functors, are then not privatised per SIMD lane by the simd loop below (arrays of
+  // structs the vectoriser cannot load) but scalarised once inlined.
+  const auto parcel = [=](std::size_t i) __attribute__((always_inline)) {
     SubstepParcel p{pvx[i], pvy[i], pw[i], pT[i], im[i]};
     Parts<typename E::Part...> part;
     (force(effects, i, p, get<K>(part)), ...);
@@ -185,7 +187,15 @@ double forced_euler(const EulerArrays& a, std::size_t n, double dt, std::index_s
     py[i] = yn;
     if constexpr (Store) (store(effects, i, get<K>(part)), ...);
     const double ddx = xn - xb[i], ddy = yn - yb[i];
-    max_d2 = std::max(max_d2, (ddx * ddx + ddy * ddy) * is2[i]);
+    return (ddx * ddx + ddy * ddy) * is2[i];
+  };
+#pragma omp parallel if (n >= kParallelMinimum)
+  {
+    // Each thread's own copy: its pointers are then locals the vectoriser sees as invariant
+    // (through the shared closure they would be reloaded, and gathered, every iteration).
+    const auto own = parcel;
+#pragma omp for simd schedule(static) reduction(max : max_d2)
+    for (std::size_t i = 0; i < n; ++i) max_d2 = std::max(max_d2, own(i));
   }
   return max_d2;
 }
