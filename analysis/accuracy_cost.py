@@ -98,7 +98,10 @@ def coupled_settings(tiny):
           # Options beyond the paper (off by default; docs/coupling.md, docs/validation.md): what
           # switching them on costs and changes.
           ("effects", "+ added mass", {"coupling.added_mass": "true"}),
-          ("effects", "Tenneti drag", {"coupling.volume_fraction_correction": "tenneti"})]
+          ("effects", "Tenneti drag", {"coupling.volume_fraction_correction": "tenneti"}),
+          ("effects", "Osnes drag", {"coupling.volume_fraction_correction": "osnes"}),
+          ("effects", "recommended physics (Osnes + added mass)",
+           {"coupling.volume_fraction_correction": "osnes", "coupling.added_mass": "true"})]
     return s
 
 
