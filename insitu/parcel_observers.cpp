@@ -9,13 +9,13 @@
 
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
-#include "insitu/series_state.hpp"
+#include "insitu/series_observer.hpp"
 #include "insitu/shock_position.hpp"
 #include "insitu/view_fields.hpp"
 #include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
-#include "solver/core/derivatives.hpp"
 #include "solver/core/communicator.hpp"
+#include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 namespace {
@@ -80,10 +80,11 @@ class VtkParcelWriter final : public Observer {
   ParcelArraysCopy own_;  // reused: no reallocation once sized
 };
 
-class BandForceObserver final : public Observer {
+class BandForceObserver final : public SeriesObserver {
  public:
   BandForceObserver(BandForceOptions options, BandParcelsOf parcels_of)
-      : options_(std::move(options)),
+      : SeriesObserver("bands", "last_sample_time"),
+        options_(std::move(options)),
         parcels_of_(std::move(parcels_of)),
         series_(options_.bands, options_.averaging) {
     if (!parcels_of_) throw std::invalid_argument("BandForceObserver: no parcel adaptor");
@@ -98,7 +99,7 @@ class BandForceObserver final : public Observer {
   }
   void on_output(const StateView& view) override {
     sample(view);
-    write(view);
+    write_series(view);
   }
   void on_finish(const StateView& view) override {
     on_output(view);
@@ -111,32 +112,27 @@ class BandForceObserver final : public Observer {
     }
   }
 
-  std::string state_key() const override { return "bands"; }
-  void save_state(Snapshot& s, const std::string& prefix) const override {
+  void on_resume(const StateView& view, const std::string&) override { write_series(view); }
+
+ private:
+  void save_more(Snapshot& s, const std::string& prefix) const override {
     s.f64[prefix + "shock_times"] = trajectory_.times();
     s.f64[prefix + "shock_reaches"] = trajectory_.reaches();
-    save_time(last_time_, sampled_, s, prefix + "last_sample_time");
     series_.save_state(s, prefix);
   }
-  void restore_state(const Snapshot& s, const std::string& prefix) override {
+  void restore_more(const Snapshot& s, const std::string& prefix) override {
     try {
       trajectory_.assign(snapshot_array(s.f64, prefix + "shock_times"),
                          snapshot_array(s.f64, prefix + "shock_reaches"));
     } catch (const std::invalid_argument& e) {
       throw SnapshotError(prefix + "shock_times/shock_reaches: " + e.what());
     }
-    sampled_ = restore_time(last_time_, s, prefix + "last_sample_time");
     series_.restore_state(s, prefix);
   }
-  void on_resume(const StateView& view, const std::string&) override { write(view); }
-
- private:
-  void write(const StateView& view) {
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    series_.write(*sink_);
-  }
+  // The band tables are recomputed whole from the accumulators at each write.
+  void write_tables(const SeriesSink& sink) override { series_.write(sink); }
   void sample(const StateView& view) {
-    if (sampled_ && view.time == last_time_) return;
+    if (sampled_at(view.time)) return;
     if (!view.grid || !view.primitives.p)
       throw std::invalid_argument("BandForceObserver: the state view has no pressure field");
     const Grid2D& grid = *view.grid;
@@ -155,8 +151,7 @@ class BandForceObserver final : public Observer {
                        parcels.initial_position.y, arrival_);
     parcels.arrival_time = arrival_;
     series_.add(parcels, view.time);
-    sampled_ = true;
-    last_time_ = view.time;
+    mark_sampled(view.time);
   }
   /// How far beyond its reach a sampled shock may stand: kMaxShockAdvanceCells widths of the
   /// cell holding the reach when sampled every step (the shock moves less than one per step),
@@ -172,11 +167,8 @@ class BandForceObserver final : public Observer {
   BandForceOptions options_;
   BandParcelsOf parcels_of_;
   BandForceSeries series_;
-  std::unique_ptr<SeriesSink> sink_;
   ShockTrajectory trajectory_;
   std::vector<double> arrival_, pressure_, x_centers_, y_centers_;
-  bool sampled_ = false;
-  double last_time_ = 0.0;
 };
 
 }  // namespace
