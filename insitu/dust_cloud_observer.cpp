@@ -124,7 +124,7 @@ class DustCloudObserver final : public SeriesObserver {
     const ParcelSystem& p = *view.parcels;
     const Grid2D& grid = *view.grid;
     if (layer_.rows() == 0) layer_.append_row(class_masses(p));  // the layer as it starts
-    const Field2D& c = dust_concentration_of(view, concentration_scratch_);
+    const Field2D& c = derived_field(view, "dust_concentration");
     interior_values(grid, c, concentration_);
     interior_values(grid, *view.primitives.p, pressure_);
     const std::vector<double> x_faces = grid.x().interior_faces(),
@@ -258,7 +258,6 @@ class DustCloudObserver final : public SeriesObserver {
   bool shock_along_x_;
   Entrainment entrainment_;
   SeriesTable table_, layer_, histogram_, rates_;
-  Field2D concentration_scratch_;
   std::vector<double> concentration_, pressure_;
   DustCloudScratch scratch_;
   bool warned_ = false;

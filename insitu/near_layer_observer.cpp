@@ -43,7 +43,7 @@ class NearLayerObserver final : public SeriesObserver {
       if (y >= options_.y_min && y <= options_.y_max) j0 = std::min(j0, j), j1 = std::max(j1, j);
     }
     if (i1 < i0 || j1 < j0) return;
-    const Field2D& vorticity = vorticity_of(view, vorticity_);
+    const Field2D& vorticity = derived_field(view, "vorticity");
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
         const double ap =
@@ -65,7 +65,6 @@ class NearLayerObserver final : public SeriesObserver {
  private:
   NearLayerOptions options_;
   SeriesTable table_;
-  Field2D vorticity_;
 };
 
 }  // namespace

@@ -8,10 +8,10 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
-#include "insitu/view_fields.hpp"
 #include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
 #include "solver/core/communicator.hpp"
+#include "solver/sim/derived_fields.hpp"
 
 namespace dustlift {
 namespace {
@@ -29,10 +29,10 @@ class VtkGasWriter final : public Observer {
     if (!view.grid) throw std::invalid_argument("VtkGasWriter: the state view has no grid");
     if (!files_) files_ = make_files(view);
     if (files_->last_time_is(view.time)) return;  // on_finish right after the output of that time
+    if (!view.derived) throw std::invalid_argument("VtkGasWriter: the state view has no fields");
     const auto sound_speed = [&](int i, int j) { return sound_speed_(view, i, j); };
     if (view.piece == nullptr) {
-      gather_gas_cells(*view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
-                       &dust_concentration_of(view, concentration_), sound_speed, cells_);
+      gather_gas_cells(*view.derived, sound_speed, cells_);
       write_gas_vtr(cells_, files_->next_path(view.time), vtk_file_info_of(view));
       files_->commit(view.time);
       return;
@@ -41,9 +41,7 @@ class VtkGasWriter final : public Observer {
     write_in_pieces(
         *files_, piece, view.time, "vtr",
         [&](const std::string& path) {
-          gather_gas_cells(*view.grid, view.primitives, view.alpha_p,
-                           vorticity_of(view, vorticity_),
-                           &dust_concentration_of(view, concentration_), sound_speed, cells_);
+          gather_gas_cells(*view.derived, sound_speed, cells_);
           write_gas_vtr(cells_, path, vtk_file_info_of(view),
                         piece.column_bounds[static_cast<std::size_t>(piece.rank)]);
         },
@@ -80,9 +78,7 @@ class VtkGasWriter final : public Observer {
   SoundSpeedFunction sound_speed_;
   std::unique_ptr<VtkSeriesFiles> files_;
   VtkSeriesFiles::State restored_;
-  GasCellArrays cells_;    // reused: no reallocation after the first output
-  Field2D vorticity_;      // for a view without the run's derived fields (made by hand)
-  Field2D concentration_;  // likewise
+  GasCellArrays cells_;  // reused: no reallocation after the first output
 };
 
 }  // namespace
