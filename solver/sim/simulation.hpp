@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/communicator.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
-#include "solver/core/communicator.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/derived_fields.hpp"
@@ -113,6 +113,13 @@ class Simulation {
   ParcelSystem* parcels() { return parcels_.get(); }
   const ParcelSystem* parcels() const { return parcels_.get(); }
   const GasParticleCoupling* coupling() const { return coupling_.get(); }
+  GasParticleCoupling* coupling() { return coupling_.get(); }
+  /// The gas's configuration (what a new slab's gas is made with).
+  const GasConfig& gas_config() const { return gas_config_; }
+  /// A run on several ranks: makes this rank's grid the columns [first_column, end_column) of
+  /// the whole grid and a new, uninitialised gas on it (the split, and every move of the
+  /// cuts). Returns the cell updates the replaced gas had made (0 when there was none).
+  long long replace_slab(int first_column, int end_column);
 
   /// What the run computed (gas cell-stage updates against the full grid, DEM sub-steps and
   /// neighbour rebuilds) and where the wall time went, for the log.
@@ -132,10 +139,11 @@ class Simulation {
   std::vector<std::string> enabled_effects() const;
 
  private:
-  friend class SlabDriver;  // replaces the slab's grid and gas when the cuts move
   bool any_rank(bool value) const;
   /// kg/m^3 of the real particles (0 in a gas-only scene): the dust concentration's factor.
-  double particle_density() const { return scene_.particles.enabled ? scene_.particles.density : 0.0; }
+  double particle_density() const {
+    return scene_.particles.enabled ? scene_.particles.density : 0.0;
+  }
   /// Builds the snapshot (collectively) and hands it to the checkpoint keepers.
   void make_checkpoint(const RunClock& now);
   /// The view an observer's calls get: its piece on several ranks when it writes pieces.
