@@ -12,35 +12,33 @@
 #include "insitu/series_observer.hpp"
 #include "insitu/shock_position.hpp"
 #include "insitu/view_fields.hpp"
-#include "insitu/vtk_pieces.hpp"
-#include "insitu/vtk_writers.hpp"
+#include "insitu/vtk_files_observer.hpp"
 #include "solver/core/communicator.hpp"
 #include "solver/core/derivatives.hpp"
 
 namespace dustlift {
 namespace {
 
-class VtkParcelWriter final : public Observer {
+class VtkParcelWriter final : public VtkFilesObserver {
  public:
-  explicit VtkParcelWriter(ParcelArraysOf parcels_of) : parcels_of_(std::move(parcels_of)) {
+  explicit VtkParcelWriter(ParcelArraysOf parcels_of)
+      : VtkFilesObserver("parcels_vtk", "parcels", "vtp"), parcels_of_(std::move(parcels_of)) {
     if (!parcels_of_) throw std::invalid_argument("VtkParcelWriter: no parcel adaptor");
   }
-  // A decomposed run: each rank writes its own parcels, rank 0 the .pvtp that joins them.
-  bool writes_pieces() const override { return true; }
 
   void on_output(const StateView& view) override {
-    if (!files_) files_ = make_files(view);
-    if (files_->last_time_is(view.time)) return;  // on_finish right after that output
+    VtkSeriesFiles& out = files(view);
+    if (out.last_time_is(view.time)) return;  // on_finish right after that output
     if (view.piece == nullptr) {
-      write_parcels_vtp(parcels_of_(view), files_->next_path(view.time), vtk_file_info_of(view));
-      files_->commit(view.time);
+      write_parcels_vtp(parcels_of_(view), out.next_path(view.time), vtk_file_info_of(view));
+      out.commit(view.time);
       return;
     }
     // The rank's table holds copies of its neighbours' parcels: those are theirs to write.
     const ParcelArraysView all = parcels_of_(view);
     const ParcelArraysView own = kept_rows(all, view.piece->parcel_copies, own_);
     write_in_pieces(
-        *files_, *view.piece, view.time, "vtp",
+        out, *view.piece, view.time, "vtp",
         [&](const std::string& path) { write_parcels_vtp(own, path, vtk_file_info_of(view)); },
         // The arrays every piece holds, from this rank's table (present even with no parcel of
         // its own).
@@ -49,34 +47,8 @@ class VtkParcelWriter final : public Observer {
         });
   }
 
-  std::string state_key() const override { return "parcels_vtk"; }
-  void save_state(Snapshot& s, const std::string& prefix) const override {
-    if (files_) {
-      files_->save_state(s, prefix);
-    } else {
-      VtkSeriesFiles("", "parcels", "vtp").save_state(s, prefix);  // nothing written yet
-    }
-  }
-  void restore_state(const Snapshot& s, const std::string& prefix) override {
-    restored_ = VtkSeriesFiles::read_state(s, prefix);
-  }
-  void on_resume(const StateView& view, const std::string& previous_output_dir) override {
-    files_ = make_files(view);
-    files_->resume(std::move(restored_), previous_output_dir);
-    if (view.piece != nullptr) view.piece->comm->barrier();  // rank 0 has removed stale pieces
-  }
-
  private:
-  static std::unique_ptr<VtkSeriesFiles> make_files(const StateView& view) {
-    if (view.piece != nullptr)
-      return std::make_unique<VtkSeriesFiles>(
-          piece_series_files(view.output_dir, "parcels", "vtp", *view.piece));
-    return std::make_unique<VtkSeriesFiles>(view.output_dir, "parcels", "vtp");
-  }
-
   ParcelArraysOf parcels_of_;
-  std::unique_ptr<VtkSeriesFiles> files_;
-  VtkSeriesFiles::State restored_;
   ParcelArraysCopy own_;  // reused: no reallocation once sized
 };
 

@@ -4,6 +4,7 @@
 // simulation.cpp sets up and steps, run_loop.cpp runs the schedule, run_report.cpp writes
 // what the run did, snapshot.cpp saves and restores it; a run on several MPI ranks adds its
 // SlabDriver (slab_driver.hpp).
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -144,6 +145,28 @@ class Simulation {
   double particle_density() const {
     return scene_.particles.enabled ? scene_.particles.density : 0.0;
   }
+  /// restore()'s steps: the parcels, the DEM's internals and the coupling's carried state
+  /// (checked on a copy, then swapped in); the gas fields read before (conserved, sources,
+  /// porosity, primitives) into this rank's grid.
+  void restore_parcels(const Snapshot& s, std::size_t cells);
+  void assign_gas(const std::array<const std::vector<double>*, 14>& gas_fields);
+  /// run()'s steps. What a decomposed run gathers on rank 0 for the observers of the whole
+  /// state (gather: at all; output_reads: Observer::StepRead bits at outputs, rank 0's).
+  struct GatherPlan {
+    bool gather = false;
+    unsigned output_reads = 0;
+  };
+  /// The previous progress report's simulated time and wall seconds (eta.hpp).
+  struct EtaMark {
+    double time = 0.0, wall = 0.0;
+  };
+  void count_from_here();  ///< the work counters at the start of run(), for work_summary()
+  GatherPlan plan_gathers() const;
+  void start_observers(const std::string& output_dir, const GatherPlan& plan);
+  /// After a step: the gather its readers need, on_step, and on_output when one is due.
+  void observe_step(const std::string& output_dir, const GatherPlan& plan, bool output_due);
+  bool checkpoints_due(const RunClock& now);  ///< any keeper's, on any rank
+  void report_progress(const RunClock& now, double end, double dt, EtaMark& eta);
   /// Builds the snapshot (collectively) and hands it to the checkpoint keepers.
   void make_checkpoint(const RunClock& now);
   /// The view an observer's calls get: its piece on several ranks when it writes pieces.

@@ -124,8 +124,53 @@ void SlabDriver::build_slab_gas() {
   halo_->attach(sim_.gas());
 }
 
+namespace {
+
+/// The largest summed work of a slab between `bounds`.
+double largest_slab(const std::vector<double>& work, const std::vector<int>& bounds) {
+  double most = 0.0;
+  for (std::size_t r = 0; r + 1 < bounds.size(); ++r) {
+    double sum = 0.0;
+    for (int i = bounds[r]; i < bounds[r + 1]; ++i) sum += work[static_cast<std::size_t>(i)];
+    most = std::max(most, sum);
+  }
+  return most;
+}
+
+using Columns = std::pair<int, int>;  ///< whole-grid columns [first, end)
+/// The columns a layout's rank stores.
+Columns stored_columns(const SlabLayout& l, int ng) {
+  return {l.first_column() + l.stored_begin(ng), l.first_column() + l.stored_end(ng)};
+}
+/// The columns a layout's rank needs after a move: its stored columns and the ghost columns
+/// at its cuts, which are other ranks' cells now (the coupling samples them before the next
+/// step's exchanges fill them).
+Columns needed_columns(const SlabLayout& l, int ng, int whole_nx) {
+  return {std::max(l.first_column() - ng, -ng), std::min(l.end_column() + ng, whole_nx + ng)};
+}
+Columns overlap(Columns a, Columns b) {
+  return {std::max(a.first, b.first), std::min(a.second, b.second)};
+}
+
+}  // namespace
+
 bool SlabDriver::rebalance() {
   const ScopedTimer timer(balance_seconds_);
+  const std::vector<double> whole_work = whole_column_work();
+  const std::vector<int> bounds = balanced_slabs(whole_work, comm_->size(), kMinSlabColumns);
+  if (!(largest_slab(whole_work, bounds) < 0.95 * largest_slab(whole_work, layout_.bounds)))
+    return false;
+  // The parcels and alpha_p, whole, on every rank: each splits them again at the new cuts
+  // (keeping the contact lists: the move changes no bit).
+  std::vector<double> parcels_whole, alpha_whole;
+  if (sim_.parcels()) broadcast_whole_parcels(parcels_whole, alpha_whole);
+  move_gas(bounds);
+  if (sim_.parcels()) resplit_parcels(parcels_whole, alpha_whole);
+  ++rebalances_;
+  return true;
+}
+
+std::vector<double> SlabDriver::whole_column_work() const {
   // Work per column of the whole grid: the cells the last stage updated, plus a twentieth
   // of every cell for the scans that find the resting ones (an estimate; docs/parallel.md).
   std::vector<double> work(static_cast<std::size_t>(sim_.grid().nx()),
@@ -153,30 +198,22 @@ bool SlabDriver::rebalance() {
     for (const auto& p : pieces) whole_work.insert(whole_work.end(), p.begin(), p.end());
   }
   comm_->broadcast(whole_work);  // every rank computes the same cuts from the same numbers
-  const std::vector<int> bounds = balanced_slabs(whole_work, comm_->size(), kMinSlabColumns);
-  auto largest = [&](const std::vector<int>& b) {
-    double most = 0.0;
-    for (std::size_t r = 0; r + 1 < b.size(); ++r) {
-      double sum = 0.0;
-      for (int i = b[r]; i < b[r + 1]; ++i) sum += whole_work[static_cast<std::size_t>(i)];
-      most = std::max(most, sum);
-    }
-    return most;
-  };
-  if (!(largest(bounds) < 0.95 * largest(layout_.bounds))) return false;
-  // The parcels and alpha_p, whole, on every rank: each splits them again at the new cuts
-  // (keeping the contact lists: the move changes no bit).
-  std::vector<double> parcels_whole, alpha_whole;
-  if (sim_.parcels()) {
-    gather(true);
-    if (comm_->is_root()) {
-      whole_parcels_->pack_owned(parcels_whole);
-      alpha_whole = whole_alpha_p_->raw();
-      alpha_whole.push_back(static_cast<double>(whole_rows_touched_));
-    }
-    comm_->broadcast(parcels_whole);
-    comm_->broadcast(alpha_whole);
+  return whole_work;
+}
+
+void SlabDriver::broadcast_whole_parcels(std::vector<double>& parcels_whole,
+                                         std::vector<double>& alpha_whole) const {
+  gather(true);
+  if (comm_->is_root()) {
+    whole_parcels_->pack_owned(parcels_whole);
+    alpha_whole = whole_alpha_p_->raw();
+    alpha_whole.push_back(static_cast<double>(whole_rows_touched_));
   }
+  comm_->broadcast(parcels_whole);
+  comm_->broadcast(alpha_whole);
+}
+
+void SlabDriver::move_gas(const std::vector<int>& bounds) {
   // The state moves exactly: every rank sends each rank the columns of its new slab, ghost
   // columns included, that it holds now (its interior, and the ghost columns beyond a domain
   // end), every field and row. Only ranks whose columns overlap exchange anything.
@@ -184,19 +221,9 @@ bool SlabDriver::rebalance() {
   const auto rows = static_cast<std::size_t>(sim_.whole_grid().ny() + 2 * ng);
   SlabLayout moved = layout_;
   moved.bounds = bounds;
-  // Whole-grid columns [first, end) a layout's rank stores.
-  auto stored = [&](const SlabLayout& l) {
-    return std::pair{l.first_column() + l.stored_begin(ng), l.first_column() + l.stored_end(ng)};
-  };
-  // Whole-grid columns [first, end) a layout's rank needs after the move: its stored columns
-  // and the ghost columns at its cuts, which are other ranks' cells now (the coupling samples
-  // them before the next step's exchanges fill them).
-  auto needed = [&](const SlabLayout& l) {
-    return std::pair{std::max(l.first_column() - ng, -ng),
-                     std::min(l.end_column() + ng, sim_.whole_grid().nx() + ng)};
-  };
-  auto overlap = [](std::pair<int, int> a, std::pair<int, int> b) {
-    return std::pair{std::max(a.first, b.first), std::min(a.second, b.second)};
+  const auto stored = [&](const SlabLayout& l) { return stored_columns(l, ng); };
+  const auto needed = [&](const SlabLayout& l) {
+    return needed_columns(l, ng, sim_.whole_grid().nx());
   };
   const int ranks = comm_->size();
   std::vector<std::vector<double>> send(static_cast<std::size_t>(ranks)),
@@ -245,24 +272,24 @@ bool SlabDriver::rebalance() {
       }
     }
   }
-  if (sim_.parcels()) {
-    ParcelSystem split = *sim_.parcels();
-    split.drop_decomposition();
-    split.assign_packed({parcels_whole});
-    take_run_state(split, *sim_.parcels());
-    parcel_slabs_->split(split, parcel_cuts());
-    *sim_.parcels() = std::move(split);
-    sim_.coupling()->move_to_slab(sim_.grid(), layout_.first_column(), *halo_);
-    GasParticleCoupling::CarriedState c;
-    c.rows_touched = static_cast<int>(alpha_whole.back());
-    alpha_whole.pop_back();
-    extract_slab(alpha_whole, sim_.whole_grid(), layout_, c.alpha_p);
-    c.rest_p = sim_.coupling()->rest_pressure();
-    c.rest_T = sim_.coupling()->rest_temperature();
-    sim_.coupling()->restore_carried_state(c);
-  }
-  ++rebalances_;
-  return true;
+}
+
+void SlabDriver::resplit_parcels(std::vector<double>& parcels_whole,
+                                 std::vector<double>& alpha_whole) {
+  ParcelSystem split = *sim_.parcels();
+  split.drop_decomposition();
+  split.assign_packed({parcels_whole});
+  take_run_state(split, *sim_.parcels());
+  parcel_slabs_->split(split, parcel_cuts());
+  *sim_.parcels() = std::move(split);
+  sim_.coupling()->move_to_slab(sim_.grid(), layout_.first_column(), *halo_);
+  GasParticleCoupling::CarriedState c;
+  c.rows_touched = static_cast<int>(alpha_whole.back());
+  alpha_whole.pop_back();
+  extract_slab(alpha_whole, sim_.whole_grid(), layout_, c.alpha_p);
+  c.rest_p = sim_.coupling()->rest_pressure();
+  c.rest_T = sim_.coupling()->rest_temperature();
+  sim_.coupling()->restore_carried_state(c);
 }
 
 std::vector<double> SlabDriver::parcel_cuts() const {
