@@ -8,12 +8,12 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 #include "insitu/catalyst_adaptor.hpp"
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
 #include "insitu/provenance_of.hpp"
-#include "insitu/view_fields.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/time_targets.hpp"
 
@@ -169,10 +169,9 @@ class CatalystObserver final : public Observer {
   void deliver(const StateView& view, bool last) {
     if (!pipelines_ || !pipelines_->wants(view.time, view.step, last)) return;
     const auto t0 = std::chrono::steady_clock::now();
+    if (!view.derived) throw std::invalid_argument("catalyst: the state view has no fields");
     gather_gas_cells(
-        *view.grid, view.primitives, view.alpha_p, vorticity_of(view, vorticity_),
-        &dust_concentration_of(view, concentration_),
-        [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
+        *view.derived, [&](int i, int j) { return view.gas->sound_speed(i, j); }, gas_);
     CatalystFrame f;
     f.time = view.time;
     f.step = view.step;
@@ -199,9 +198,7 @@ class CatalystObserver final : public Observer {
   std::string module_path_;
   CatalystFactory factory_ = nullptr;
   std::unique_ptr<CatalystPipelines> pipelines_;
-  GasCellArrays gas_;      // reused: no reallocation after the first frame
-  Field2D vorticity_;      // for a view without the run's derived fields (made by hand)
-  Field2D concentration_;  // likewise
+  GasCellArrays gas_;  // reused: no reallocation after the first frame
   /// insitu.catalyst.interval (simulated s) or interval_steps.
   Cadence frames_;
   long long gathered_ = 0;

@@ -17,6 +17,8 @@
 #include <sstream>
 #include <vector>
 
+#include "insitu/hdf5_handle.hpp"
+
 namespace dustlift {
 namespace {
 
@@ -43,39 +45,8 @@ std::uint64_t fnv1a64(const char* data, std::size_t n) {
   return h;
 }
 
-/// Closes an HDF5 handle on scope exit; a negative id throws CheckpointError.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw CheckpointError(what);
-  }
-  ~Handle() { close_(id_); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  operator hid_t() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw CheckpointError(what);
-}
-
-/// Silences the HDF5 error stack printout while in scope (errors become one-line messages).
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
+using Handle = Hdf5Handle<CheckpointError>;
+constexpr auto check = hdf5_check<CheckpointError>;
 
 std::string read_file(const std::string& path) {
   std::error_code ec;

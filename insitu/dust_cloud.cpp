@@ -178,10 +178,7 @@ void fill_filtered(const FilterCells& cells, const std::vector<double>& mass,
   f.fines_explosible_concentration = band ? f.fines_explosible_mass / f.explosible_area : kNaN;
 }
 
-}  // namespace
-
-DustCloud dust_cloud(const CloudParcels& p, const CloudField& f, const DustCloudOptions& o,
-                     DustCloudScratch& scratch) {
+void check_shapes(const CloudParcels& p, const CloudField& f) {
   const std::size_t n = p.x.size();
   if (p.y.size() != n || p.mass.size() != n || p.temperature.size() != n ||
       (!p.size_class.empty() && p.size_class.size() != n) ||
@@ -189,9 +186,47 @@ DustCloud dust_cloud(const CloudParcels& p, const CloudField& f, const DustCloud
     throw std::invalid_argument("dust_cloud: the parcel columns differ in length");
   if (f.x_faces.size() < 2 || f.y_faces.size() < 2)
     throw std::invalid_argument("dust_cloud: the field has no cells");
-  const std::size_t nx = f.x_faces.size() - 1, ny = f.y_faces.size() - 1;
-  if (f.concentration.size() != nx * ny)
+  if (f.concentration.size() != (f.x_faces.size() - 1) * (f.y_faces.size() - 1))
     throw std::invalid_argument("dust_cloud: the concentration does not hold nx * ny values");
+}
+
+/// The lifted columns: the most downstream one and the one holding the most mass.
+void find_lifted_columns(std::span<const double> x_faces, const std::vector<double>& column_mass,
+                         DustCloud& cloud) {
+  cloud.first_lifted_x = cloud.densest_lifted_x = kNaN;
+  double densest = 0.0;
+  for (std::size_t i = 0; i < column_mass.size(); ++i) {
+    if (!(column_mass[i] > 0.0)) continue;
+    const double centre = 0.5 * (x_faces[i] + x_faces[i + 1]);
+    cloud.first_lifted_x = centre;
+    if (column_mass[i] > densest) {
+      densest = column_mass[i];
+      cloud.densest_lifted_x = centre;
+    }
+  }
+}
+
+/// The cloud's top on the flow grid: the highest row above the layer that reaches the level.
+void find_cloud_top(const CloudField& f, const DustCloudOptions& o, DustCloud& cloud) {
+  const std::size_t nx = f.x_faces.size() - 1, ny = f.y_faces.size() - 1;
+  for (std::size_t j = 0; j < ny; ++j) {
+    if (!(0.5 * (f.y_faces[j] + f.y_faces[j + 1]) > o.layer_top)) continue;
+    for (std::size_t i = 0; i < nx; ++i) {
+      if (f.concentration[i + nx * j] >= o.top_concentration) {
+        cloud.cloud_top = f.y_faces[j + 1] - o.layer_top;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+DustCloud dust_cloud(const CloudParcels& p, const CloudField& f, const DustCloudOptions& o,
+                     DustCloudScratch& scratch) {
+  check_shapes(p, f);
+  const std::size_t n = p.x.size();
+  const std::size_t nx = f.x_faces.size() - 1;
   const int classes = std::max(1, o.classes);
   const FilterCells cells(o);
 
@@ -241,29 +276,8 @@ DustCloud dust_cloud(const CloudParcels& p, const CloudField& f, const DustCloud
   cloud.filtered.quantum = concentration_quantum(largest, o.filter_width);
   fill_filtered(cells, scratch.cell_mass, scratch.cell_fines, o, cloud.filtered);
 
-  // The lifted columns: the most downstream one and the one holding the most mass.
-  cloud.first_lifted_x = cloud.densest_lifted_x = kNaN;
-  double densest = 0.0;
-  for (std::size_t i = 0; i < nx; ++i) {
-    if (!(scratch.column_mass[i] > 0.0)) continue;
-    const double centre = 0.5 * (f.x_faces[i] + f.x_faces[i + 1]);
-    cloud.first_lifted_x = centre;
-    if (scratch.column_mass[i] > densest) {
-      densest = scratch.column_mass[i];
-      cloud.densest_lifted_x = centre;
-    }
-  }
-
-  // The cloud's top on the flow grid: the highest row above the layer that reaches the level.
-  for (std::size_t j = 0; j < ny; ++j) {
-    if (!(0.5 * (f.y_faces[j] + f.y_faces[j + 1]) > o.layer_top)) continue;
-    for (std::size_t i = 0; i < nx; ++i) {
-      if (f.concentration[i + nx * j] >= o.top_concentration) {
-        cloud.cloud_top = f.y_faces[j + 1] - o.layer_top;
-        break;
-      }
-    }
-  }
+  find_lifted_columns(f.x_faces, scratch.column_mass, cloud);
+  find_cloud_top(f, o, cloud);
   return cloud;
 }
 

@@ -15,8 +15,7 @@
 #include "insitu/dust_cloud.hpp"
 #include "insitu/entrainment.hpp"
 #include "insitu/observers.hpp"
-#include "insitu/provenance_of.hpp"
-#include "insitu/series_state.hpp"
+#include "insitu/series_observer.hpp"
 #include "insitu/series_table.hpp"
 #include "insitu/shock_position.hpp"
 #include "insitu/view_fields.hpp"
@@ -102,27 +101,30 @@ void append_lifted(std::vector<double>& row, const LiftedDust& d, double layer_m
                          d.height_p99, d.temperature_max, d.temperature_mean});
 }
 
-class DustCloudObserver final : public Observer {
+class DustCloudObserver final : public SeriesObserver {
  public:
   DustCloudObserver(DustCloudOptions options, EntrainmentOptions entrainment,
                     ShockPositionOptions shock, bool shock_along_x)
-      : options_(std::move(options)),
+      : SeriesObserver("dust_cloud"),
+        options_(std::move(options)),
         shock_(shock),
         shock_along_x_(shock_along_x),
         entrainment_(entrainment),
         table_("dust_cloud", cloud_columns(options_.classes, options_.heights)),
         layer_("dust_cloud_layer", layer_columns(options_.classes)),
         histogram_("dust_concentration_histogram", histogram_columns()),
-        rates_("dust_entrainment", entrainment_columns(options_.heights)) {}
+        rates_("dust_entrainment", entrainment_columns(options_.heights)) {
+    keep({&table_, &layer_, &histogram_, &rates_});
+  }
 
   unsigned output_reads() const override { return kReadsParcels | kReadsAlphaP | kReadsPressure; }
   void on_output(const StateView& view) override {
     if (view.parcels == nullptr || view.grid == nullptr) return;
-    if (sampled_ && view.time == last_time_) return;  // on_finish right after an output
+    if (sampled_at(view.time)) return;  // on_finish right after an output
     const ParcelSystem& p = *view.parcels;
     const Grid2D& grid = *view.grid;
     if (layer_.rows() == 0) layer_.append_row(class_masses(p));  // the layer as it starts
-    const Field2D& c = dust_concentration_of(view, concentration_scratch_);
+    const Field2D& c = derived_field(view, "dust_concentration");
     interior_values(grid, c, concentration_);
     interior_values(grid, *view.primitives.p, pressure_);
     const std::vector<double> x_faces = grid.x().interior_faces(),
@@ -174,34 +176,26 @@ class DustCloudObserver final : public Observer {
     table_.append_row(row);
     append_histogram(view.time, f);
     if (rates.has_rates) append_rates(view.time, shock_mid, rates);
-    sampled_ = true;
-    last_time_ = view.time;
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    write();
+    mark_sampled(view.time);
+    write_series(view);
   }
 
-  std::string state_key() const override { return "dust_cloud"; }
-  void save_state(Snapshot& s, const std::string& prefix) const override {
-    save_series_state({&table_, &layer_, &histogram_, &rates_}, last_time_, sampled_, s, prefix);
-    entrainment_.save(s, prefix);
-  }
-  void restore_state(const Snapshot& s, const std::string& prefix) override {
-    sampled_ =
-        restore_series_state({&table_, &layer_, &histogram_, &rates_}, last_time_, s, prefix);
-    entrainment_.restore(s, prefix);
-  }
-  void on_resume(const StateView& view, const std::string&) override {
-    if (!sampled_) return;
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    if (view.parcels != nullptr) {
+  void on_resume(const StateView& view, const std::string& previous_output_dir) override {
+    if (sampled() && view.parcels != nullptr) {
       double largest = 0.0;
       for (double m : view.parcels->mass) largest = std::max(largest, m);
       warn_once(view, concentration_quantum(largest, options_.filter_width));
     }
-    write();
+    SeriesObserver::on_resume(view, previous_output_dir);
   }
 
  private:
+  void save_more(Snapshot& s, const std::string& prefix) const override {
+    entrainment_.save(s, prefix);
+  }
+  void restore_more(const Snapshot& s, const std::string& prefix) override {
+    entrainment_.restore(s, prefix);
+  }
   /// The layer's mass per class, then in all (kg/m): what the lifted shares divide by.
   static std::vector<SeriesColumn> layer_columns(int classes) {
     std::vector<SeriesColumn> c;
@@ -246,10 +240,11 @@ class DustCloudObserver final : public Observer {
       rates_.append_row(row);
     }
   }
-  void write() {
-    sink_->write(table_);
-    sink_->write(histogram_);
-    if (rates_.rows() > 0) sink_->write(rates_);
+  // The layer's masses stay in the checkpoint only: every lifted share divides by them.
+  void write_tables(const SeriesSink& sink) override {
+    sink.write(table_);
+    sink.write(histogram_);
+    if (rates_.rows() > 0) sink.write(rates_);
   }
   void warn_once(const StateView& view, double quantum) {
     if (warned_) return;
@@ -263,12 +258,9 @@ class DustCloudObserver final : public Observer {
   bool shock_along_x_;
   Entrainment entrainment_;
   SeriesTable table_, layer_, histogram_, rates_;
-  std::unique_ptr<SeriesSink> sink_;
-  Field2D concentration_scratch_;
   std::vector<double> concentration_, pressure_;
   DustCloudScratch scratch_;
-  bool sampled_ = false, warned_ = false;
-  double last_time_ = 0.0;
+  bool warned_ = false;
 };
 
 }  // namespace

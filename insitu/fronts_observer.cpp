@@ -10,8 +10,7 @@
 
 #include "insitu/observers.hpp"
 #include "insitu/parcel_fronts.hpp"
-#include "insitu/provenance_of.hpp"
-#include "insitu/series_state.hpp"
+#include "insitu/series_observer.hpp"
 #include "insitu/series_table.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/scene/scene.hpp"
@@ -36,10 +35,11 @@ SeriesTable totals_table(const std::vector<std::pair<ForcePart, std::string>>& p
   return SeriesTable("parcel_force_totals", std::move(columns));
 }
 
-class FrontsObserver final : public Observer {
+class FrontsObserver final : public SeriesObserver {
  public:
   FrontsObserver(const LineOfSight& sight, std::vector<std::pair<ForcePart, std::string>> parts)
-      : sight_(sight),
+      : SeriesObserver("parcel_fronts"),
+        sight_(sight),
         parts_(std::move(parts)),
         table_("parcel_fronts", {{"time", "s"},
                                  {"x_min", "m"},
@@ -49,12 +49,14 @@ class FrontsObserver final : public Observer {
                                  {"x_sight_up", "m"},
                                  {"x_sight_down", "m"}}),
         totals_(totals_table(parts_)),
-        profile_table_("line_of_sight", {{"time", "s"}, {"x", "m"}, {"optical_depth", "1"}}) {}
+        profile_table_("line_of_sight", {{"time", "s"}, {"x", "m"}, {"optical_depth", "1"}}) {
+    keep({&table_, &totals_, &profile_table_});
+  }
 
   unsigned output_reads() const override { return kReadsParcels; }
   void on_output(const StateView& view) override {
     if (view.parcels == nullptr || view.parcels->size() == 0) return;
-    if (sampled_ && view.time == last_time_) return;  // on_finish right after an output
+    if (sampled_at(view.time)) return;  // on_finish right after an output
     const ParcelSystem& p = *view.parcels;
     const ParcelFronts f = parcel_fronts(p.x, p.n_real, 0.01, order_);
     const SightEdges e = line_of_sight_edges(p.x, p.n_real, p.real_diameter, sight_, profile_);
@@ -75,38 +77,16 @@ class FrontsObserver final : public Observer {
       row.push_back(sum);
     }
     totals_.append_row(row);
-    sampled_ = true;
-    last_time_ = view.time;
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    sink_->write(table_);
-    sink_->write(totals_);
-    sink_->write(profile_table_);
-  }
-
-  std::string state_key() const override { return "parcel_fronts"; }
-  void save_state(Snapshot& s, const std::string& prefix) const override {
-    save_series_state({&table_, &totals_, &profile_table_}, last_time_, sampled_, s, prefix);
-  }
-  void restore_state(const Snapshot& s, const std::string& prefix) override {
-    sampled_ = restore_series_state({&table_, &totals_, &profile_table_}, last_time_, s, prefix);
-  }
-  void on_resume(const StateView& view, const std::string&) override {
-    if (!sampled_) return;
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    sink_->write(table_);
-    sink_->write(totals_);
-    sink_->write(profile_table_);
+    mark_sampled(view.time);
+    write_series(view);
   }
 
  private:
   LineOfSight sight_;
   std::vector<std::pair<ForcePart, std::string>> parts_;
   SeriesTable table_, totals_, profile_table_;
-  std::unique_ptr<SeriesSink> sink_;
   std::vector<std::size_t> order_;
   SightProfile profile_;
-  bool sampled_ = false;
-  double last_time_ = 0.0;
 };
 
 }  // namespace

@@ -1,16 +1,35 @@
 #include "insitu/gas_cells.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "solver/sim/derived_fields.hpp"
+#include "solver/sim/gas_fields.hpp"
 
 namespace dustlift {
 
 void GasCellArrays::resize(std::size_t nx, std::size_t ny) {
-  for (auto* a : {&density, &velocity_x, &velocity_y, &pressure, &temperature, &mach, &alpha_p,
-                  &vorticity, &dust_concentration})
-    a->resize(nx * ny);
+  const auto fields = gas_fields();
+  if (arrays.size() != fields.size()) {
+    arrays.clear();
+    for (const GasField& f : fields)
+      arrays.push_back({std::string(f.name),
+                        std::vector<std::vector<double>>(static_cast<std::size_t>(f.components))});
+  }
+  for (GasCellArray& a : arrays)
+    for (auto& c : a.components) c.resize(nx * ny);
+}
+
+std::vector<double>& GasCellArrays::values(std::string_view name, std::size_t component) {
+  for (GasCellArray& a : arrays)
+    if (a.name == name && component < a.components.size()) return a.components[component];
+  throw std::invalid_argument("GasCellArrays: no array " + std::string(name) + " component " +
+                              std::to_string(component));
+}
+
+const std::vector<double>& GasCellArrays::values(std::string_view name,
+                                                 std::size_t component) const {
+  return const_cast<GasCellArrays&>(*this).values(name, component);
 }
 
 namespace {
@@ -29,50 +48,37 @@ std::vector<double> GasCellArrays::y_centers() const {
 }
 
 void GasCellArrays::check_sizes() const {
-  const std::pair<const char*, const std::vector<double>*> arrays[] = {
-      {"density", &density},
-      {"velocity_x", &velocity_x},
-      {"velocity_y", &velocity_y},
-      {"pressure", &pressure},
-      {"temperature", &temperature},
-      {"mach", &mach},
-      {"alpha_p", &alpha_p},
-      {"vorticity", &vorticity},
-      {"dust_concentration", &dust_concentration}};
-  for (const auto& [name, a] : arrays)
-    if (a->size() != cells())
-      throw std::invalid_argument(std::string("GasCellArrays: ") + name + " has " +
-                                  std::to_string(a->size()) +
-                                  " values, expected nx*ny = " + std::to_string(cells()));
+  for (const GasCellArray& a : arrays)
+    for (std::size_t c = 0; c < a.components.size(); ++c)
+      if (a.components[c].size() != cells())
+        throw std::invalid_argument("GasCellArrays: " + a.name +
+                                    (a.components.size() > 1 ? "[" + std::to_string(c) + "]" : "") +
+                                    " has " + std::to_string(a.components[c].size()) +
+                                    " values, expected nx*ny = " + std::to_string(cells()));
 }
 
-void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
-                      const Field2D& vorticity, const Field2D* dust_concentration,
+void gather_gas_cells(const DerivedFields& fields,
                       const std::function<double(int, int)>& sound_speed, GasCellArrays& out) {
-  if (!gas.rho || !gas.u || !gas.v || !gas.p || !gas.T || !gas.alpha_g)
-    throw std::invalid_argument("gather_gas_cells: a primitive field is missing");
-  if (vorticity.size() != grid.size_with_ghosts())
-    throw std::invalid_argument("gather_gas_cells: the vorticity is not a field of this grid");
-  if (dust_concentration != nullptr && dust_concentration->size() != grid.size_with_ghosts())
-    throw std::invalid_argument(
-        "gather_gas_cells: the dust concentration is not a field of this grid");
+  GasFieldInputs in = fields.inputs();
+  const GasPrimitives& gas = in.gas;
+  if (in.grid == nullptr || !gas.rho || !gas.u || !gas.v || !gas.p || !gas.T || !gas.alpha_g)
+    throw std::invalid_argument("gather_gas_cells: the grid or a primitive field is missing");
+  in.sound_speed = sound_speed;
+  const Grid2D& grid = *in.grid;
   out.x_nodes = grid.x().interior_faces();
   out.y_nodes = grid.y().interior_faces();
   const int nx = grid.nx(), ny = grid.ny();
   out.resize(static_cast<std::size_t>(nx), static_cast<std::size_t>(ny));
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const std::size_t k = static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * j;
-      const double u = (*gas.u)(i, j), v = (*gas.v)(i, j);
-      out.density[k] = (*gas.rho)(i, j);
-      out.velocity_x[k] = u;
-      out.velocity_y[k] = v;
-      out.pressure[k] = (*gas.p)(i, j);
-      out.temperature[k] = (*gas.T)(i, j);
-      out.alpha_p[k] = alpha_p != nullptr ? (*alpha_p)(i, j) : 1.0 - (*gas.alpha_g)(i, j);
-      out.mach[k] = std::hypot(u, v) / sound_speed(i, j);
-      out.vorticity[k] = vorticity(i, j);
-      out.dust_concentration[k] = dust_concentration != nullptr ? (*dust_concentration)(i, j) : 0.0;
+  const auto registry = gas_fields();
+  for (std::size_t f = 0; f < registry.size(); ++f) {
+    const GasField& field = registry[f];
+    const Field2D* made = field.made == GasFieldMade::OncePerStep ? &fields.field(f) : nullptr;
+    for (std::size_t c = 0; c < out.arrays[f].components.size(); ++c) {
+      std::vector<double>& to = out.arrays[f].components[c];
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+          to[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * j] =
+              made != nullptr ? (*made)(i, j) : field.cell(in, i, j, static_cast<int>(c));
     }
   }
 }

@@ -1,33 +1,36 @@
 #pragma once
-// The gas output as plain arrays on the interior cells (x fastest, index i + nx*j):
-// what the .vtr writer and the filters consume. Tests fill it with synthetic fields.
+// The gas output as plain arrays on the interior cells (x fastest, index i + nx*j), one per
+// field of gas_fields() (solver/sim/gas_fields.hpp) in its order: what the .vtr writer,
+// Catalyst and the filters consume. Tests fill it with synthetic fields.
 #include <cstddef>
 #include <functional>
+#include <string>
+#include <string_view>
 #include <vector>
-
-#include "solver/core/grid.hpp"
-#include "solver/gas/gas_solver.hpp"
 
 namespace dustlift {
 
+class DerivedFields;
+
+struct GasCellArray {
+  std::string name;                             ///< as in gas_fields()
+  std::vector<std::vector<double>> components;  ///< one array of nx*ny values per component
+};
+
 struct GasCellArrays {
-  std::vector<double> x_nodes;             ///< m, nx+1 interior faces
-  std::vector<double> y_nodes;             ///< m, ny+1 interior faces
-  std::vector<double> density;             ///< kg/m^3
-  std::vector<double> velocity_x;          ///< m/s
-  std::vector<double> velocity_y;          ///< m/s
-  std::vector<double> pressure;            ///< Pa
-  std::vector<double> temperature;         ///< K
-  std::vector<double> mach;                ///< 1, |u|/c
-  std::vector<double> alpha_p;             ///< 1, particle volume fraction = 1 - alpha_g
-  std::vector<double> vorticity;           ///< 1/s, w_z = dv/dx - du/dy
-  std::vector<double> dust_concentration;  ///< kg/m^3, rho_p alpha_p
+  std::vector<double> x_nodes;       ///< m, nx+1 interior faces
+  std::vector<double> y_nodes;       ///< m, ny+1 interior faces
+  std::vector<GasCellArray> arrays;  ///< gas_fields() in order (made by resize)
 
   std::size_t nx() const { return x_nodes.empty() ? 0 : x_nodes.size() - 1; }
   std::size_t ny() const { return y_nodes.empty() ? 0 : y_nodes.size() - 1; }
   std::size_t cells() const { return nx() * ny(); }
-  /// Sizes every cell array to nx*ny (keeps capacity: no reallocation once sized).
+  /// Makes one array per gas field and sizes each to nx*ny (keeps capacity: no reallocation
+  /// once sized).
   void resize(std::size_t nx, std::size_t ny);
+  /// Component `component` of the field `name`; std::invalid_argument when there is none.
+  std::vector<double>& values(std::string_view name, std::size_t component = 0);
+  const std::vector<double>& values(std::string_view name, std::size_t component = 0) const;
   /// Cell centres (midpoints of the nodes).
   std::vector<double> x_centers() const;
   std::vector<double> y_centers() const;
@@ -35,12 +38,10 @@ struct GasCellArrays {
   void check_sizes() const;
 };
 
-/// Fills `out` from the primitive fields, `vorticity` and `dust_concentration` (interior
-/// cells) and computes alpha_p and mach = sqrt(u^2+v^2) / sound_speed(i, j).
-/// alpha_p: the deposited particle volume fraction, or null to use 1 - alpha_g.
-/// dust_concentration: null for zeros (no particles).
-void gather_gas_cells(const Grid2D& grid, const GasPrimitives& gas, const Field2D* alpha_p,
-                      const Field2D& vorticity, const Field2D* dust_concentration,
+/// Fills `out` with every field of gas_fields() for what `fields` shows: the fields made once
+/// per step from `fields`, the others from its inputs cell by cell, the Mach number with
+/// `sound_speed(i, j)`.
+void gather_gas_cells(const DerivedFields& fields,
                       const std::function<double(int, int)>& sound_speed, GasCellArrays& out);
 
 }  // namespace dustlift

@@ -3,26 +3,27 @@
 #include <stdexcept>
 
 #include "insitu/observers.hpp"
-#include "insitu/provenance_of.hpp"
-#include "insitu/series_state.hpp"
+#include "insitu/series_observer.hpp"
 #include "solver/sim/time_targets.hpp"
 
 namespace dustlift {
 namespace {
 
-class ProbeObserver final : public Observer {
+class ProbeObserver final : public SeriesObserver {
  public:
   explicit ProbeObserver(ProbeOptions options)
-      : options_(std::move(options)),
+      : SeriesObserver("probes"),
+        options_(std::move(options)),
         table_("probes", columns(options_)),
         samples_(options_.interval > 0.0 ? Cadence::simulated(options_.interval)
                                          : Cadence::every_step()) {
     if (options_.probes.empty()) throw std::invalid_argument("ProbeObserver: no probe");
+    keep({&table_});
   }
 
   void on_start(const StateView& view) override {
     sample(view);
-    write(view);
+    write_series(view);
   }
   bool reads_step(const StateView& view) const override {
     return samples_.due({view.time, view.step, 0.0});
@@ -32,24 +33,19 @@ class ProbeObserver final : public Observer {
   void on_step(const StateView& view) override {
     if (reads_step(view)) sample(view);
   }
-  void on_output(const StateView& view) override { write(view); }
+  void on_output(const StateView& view) override { write_series(view); }
   void on_finish(const StateView& view) override {
     sample(view);
-    write(view);
+    write_series(view);
   }
-
-  std::string state_key() const override { return "probes"; }
-  void save_state(Snapshot& s, const std::string& prefix) const override {
-    save_series_state({&table_}, last_time_, sampled_, s, prefix);
-    s.i64[prefix + "next_sample"] = {samples_.next_index()};
-  }
-  void restore_state(const Snapshot& s, const std::string& prefix) override {
-    sampled_ = restore_series_state({&table_}, last_time_, s, prefix);
-    samples_.set_next_index(snapshot_array(s.i64, prefix + "next_sample", 1)[0]);
-  }
-  void on_resume(const StateView& view, const std::string&) override { write(view); }
 
  private:
+  void save_more(Snapshot& s, const std::string& prefix) const override {
+    s.i64[prefix + "next_sample"] = {samples_.next_index()};
+  }
+  void restore_more(const Snapshot& s, const std::string& prefix) override {
+    samples_.set_next_index(snapshot_array(s.i64, prefix + "next_sample", 1)[0]);
+  }
   static std::vector<SeriesColumn> columns(const ProbeOptions& o) {
     std::vector<SeriesColumn> c{{"time", "s"}};
     for (const ProbeConfig& p : o.probes) {
@@ -74,7 +70,7 @@ class ProbeObserver final : public Observer {
     return std::hypot((*g.u)(i, j), (*g.v)(i, j)) / v.gas->sound_speed(i, j);  // "mach"
   }
   void sample(const StateView& view) {
-    if (sampled_ && view.time == last_time_) return;
+    if (sampled_at(view.time)) return;
     if (!view.grid || !view.primitives.p)
       throw std::invalid_argument("ProbeObserver: the state view has no gas fields");
     row_.assign(1, view.time);
@@ -83,21 +79,13 @@ class ProbeObserver final : public Observer {
       for (const std::string& f : p.fields) row_.push_back(value(view, f, i, j));
     }
     table_.append_row(row_);
-    sampled_ = true;
-    last_time_ = view.time;
+    mark_sampled(view.time);
     samples_.done({view.time, view.step, 0.0});
-  }
-  void write(const StateView& view) {
-    if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
-    sink_->write(table_);
   }
 
   ProbeOptions options_;
   SeriesTable table_;
-  std::unique_ptr<SeriesSink> sink_;
   std::vector<double> row_;
-  bool sampled_ = false;
-  double last_time_ = 0.0;
   Cadence samples_;  ///< probe.interval, or every step
 };
 

@@ -13,30 +13,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "insitu/hdf5_handle.hpp"
 #include "insitu/series_table.hpp"
 
 namespace dustlift {
 namespace {
 
-/// Closes an HDF5 handle on scope exit.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: " + what);
-  }
-  ~Handle() { close_(id_); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  operator hid_t() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
+/// The series' errors: std::runtime_error, "HDF5: " and what was being done.
+struct SeriesH5Error : std::runtime_error {
+  explicit SeriesH5Error(const std::string& what) : std::runtime_error("HDF5: " + what) {}
 };
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: " + what);
-}
+using Handle = Hdf5Handle<SeriesH5Error>;
+constexpr auto check = hdf5_check<SeriesH5Error>;
 
 /// A variable-length UTF-8 string type (for attributes of any length).
 hid_t utf8_string_type() {
@@ -103,14 +91,11 @@ std::string utc_now() {
 /// that the next writes do not restore).
 hid_t open_or_create(const std::string& path) {
   if (std::filesystem::exists(path)) {
-    H5E_auto2_t old_func;
-    void* old_data;
-    H5Eget_auto2(H5E_DEFAULT, &old_func, &old_data);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    const hid_t file = H5Fis_hdf5(path.c_str()) > 0
-                           ? H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)
-                           : H5I_INVALID_HID;
-    H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
+    const hid_t file = [&] {
+      QuietHdf5 quiet;
+      return H5Fis_hdf5(path.c_str()) > 0 ? H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)
+                                          : H5I_INVALID_HID;
+    }();
     if (file >= 0) return file;
   }
   return H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);

@@ -33,16 +33,4 @@ bool restore_time(double& time, const Snapshot& s, const std::string& name) {
   return true;
 }
 
-void save_series_state(std::initializer_list<const SeriesTable*> tables, double last_time,
-                       bool written, Snapshot& s, const std::string& prefix) {
-  for (const SeriesTable* t : tables) save_table(*t, s, prefix);
-  save_time(last_time, written, s, prefix + "last_time");
-}
-
-bool restore_series_state(std::initializer_list<SeriesTable*> tables, double& last_time,
-                          const Snapshot& s, const std::string& prefix) {
-  for (SeriesTable* t : tables) restore_table(*t, s, prefix);
-  return restore_time(last_time, s, prefix + "last_time");
-}
-
 }  // namespace dustlift

@@ -1,7 +1,6 @@
 #pragma once
 // What the series observers carry in a checkpoint (group insitu/<key>/), so that a run
 // continued from it writes the same series as a run that was never interrupted.
-#include <initializer_list>
 #include <string>
 
 #include "insitu/series_table.hpp"
@@ -18,13 +17,5 @@ void restore_table(SeriesTable& table, const Snapshot& s, const std::string& pre
 void save_time(double time, bool present, Snapshot& s, const std::string& name);
 /// Returns whether a time was stored and sets `time`; SnapshotError when the array is missing.
 bool restore_time(double& time, const Snapshot& s, const std::string& name);
-
-/// A series observer's whole state: its tables and the time it last wrote (written = false:
-/// not yet), under `prefix` (the time as <prefix>last_time).
-void save_series_state(std::initializer_list<const SeriesTable*> tables, double last_time,
-                       bool written, Snapshot& s, const std::string& prefix);
-/// Takes it back; returns `written` and sets `last_time`.
-bool restore_series_state(std::initializer_list<SeriesTable*> tables, double& last_time,
-                          const Snapshot& s, const std::string& prefix);
 
 }  // namespace dustlift

@@ -1,6 +1,7 @@
 #pragma once
 // Fields an observer reads from a state view beyond the stored gas state.
 #include <cstddef>
+#include <string_view>
 #include <vector>
 
 #include "solver/core/field.hpp"
@@ -9,15 +10,10 @@
 
 namespace dustlift {
 
-/// The vorticity of what the view shows: the run's derived field (made once per step,
-/// StateView::derived), or for a view made by hand, made here into `scratch`. On an MPI
-/// rank's slab the derivatives at the cuts read the ghost columns, which hold the
-/// neighbours' cells, so every piece holds the one-rank values.
-const Field2D& vorticity_of(const StateView& view, Field2D& scratch);
-
-/// The dust concentration rho_p alpha_p (kg/m^3) of what the view shows, made once per step
-/// like the vorticity (or into `scratch` for a view made by hand); zeros without parcels.
-const Field2D& dust_concentration_of(const StateView& view, Field2D& scratch);
+/// The gas field `name` made once per step (gas_fields.hpp) for what the view shows: the
+/// run's DerivedFields (StateView::derived), shared by every observer that reads it. Throws
+/// std::invalid_argument for a view without them.
+const Field2D& derived_field(const StateView& view, std::string_view name);
 
 /// Copies the interior cells of `f` into `out` (x fastest: index i + nx j, the series' and
 /// filters' layout); `transform` maps each value.

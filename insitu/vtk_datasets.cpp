@@ -66,14 +66,13 @@ vtkSmartPointer<vtkRectilinearGrid> make_gas_grid(const GasCellArrays& gas, int 
 void set_gas_cell_data(vtkRectilinearGrid* grid, const GasCellArrays& gas) {
   vtkCellData* cd = grid->GetCellData();
   cd->Initialize();
-  cd->AddArray(wrapped_array("density", gas.density));
-  cd->AddArray(vector_array("velocity", gas.velocity_x, gas.velocity_y));
-  cd->AddArray(wrapped_array("pressure", gas.pressure));
-  cd->AddArray(wrapped_array("temperature", gas.temperature));
-  cd->AddArray(wrapped_array("mach", gas.mach));
-  cd->AddArray(wrapped_array("alpha_p", gas.alpha_p));
-  cd->AddArray(wrapped_array("vorticity", gas.vorticity));
-  cd->AddArray(wrapped_array("dust_concentration", gas.dust_concentration));
+  for (const GasCellArray& a : gas.arrays) {
+    if (a.components.size() == 2) {
+      cd->AddArray(vector_array(a.name.c_str(), a.components[0], a.components[1]));
+    } else {
+      cd->AddArray(wrapped_array(a.name.c_str(), a.components.at(0)));
+    }
+  }
   cd->SetActiveScalars("pressure");
   grid->Modified();
 }

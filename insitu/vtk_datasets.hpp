@@ -18,8 +18,8 @@ struct VtkFileInfo;
 /// `first_column` (ParaView's .pvtr reader places the pieces by their extents).
 vtkSmartPointer<vtkRectilinearGrid> make_gas_grid(const GasCellArrays& gas, int first_column = 0);
 
-/// Replaces the cell data of `grid` by the arrays of `gas` (density, velocity with z = 0,
-/// pressure, temperature, mach, alpha_p, vorticity; active scalars pressure). The scalar
+/// Replaces the cell data of `grid` by the arrays of `gas` in their order (gas_fields();
+/// vectors with z = 0; active scalars pressure). The scalar
 /// arrays wrap `gas`'s storage without a copy: `gas` must outlive their use and not be
 /// resized meanwhile. The velocity is interleaved into a new 3-component array.
 void set_gas_cell_data(vtkRectilinearGrid* grid, const GasCellArrays& gas);

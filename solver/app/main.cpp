@@ -3,7 +3,6 @@
 // Exit codes: 0 success, 2 bad input (scene, options, output folder, checkpoint),
 // 3 numerical failure, 4 interrupted (SIGINT/SIGTERM; checkpoint written).
 // `run --restart CHECKPOINT` continues a run in its folder (docs/reliability.md).
-#include <map>
 #include <fmt/core.h>
 #include <omp.h>
 #include <unistd.h>
@@ -15,13 +14,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "insitu/checkpoint.hpp"
 #include "insitu/lifting_delay.hpp"
 #include "solver/app/info.hpp"
-#include "solver/scene/scene_keys.hpp"
 #include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/app/sweep.hpp"
@@ -30,6 +29,7 @@
 #include "solver/core/wait_policy.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/parallel/world.hpp"
+#include "solver/scene/scene_keys.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/time_targets.hpp"
@@ -138,6 +138,118 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
   return run_scene(scene, out_dir, options).exit_code;  // exit 4 printed how to continue
 }
 
+/// What the command line says, as CLI11 fills it.
+struct CommandLine {
+  std::string scene_path, out_dir, restart_path, study_path;
+  std::vector<std::string> overrides, varies, info_scenes;
+  int threads = 0;
+  bool overwrite = false, keys = false;
+  SweepDefinition sweep;  ///< --stations and --lift-threshold
+  CLI::App* run = nullptr;
+  CLI::App* sweep_cmd = nullptr;
+  CLI::App* info = nullptr;
+};
+
+void add_run_command(CLI::App& app, CommandLine& c) {
+  c.run = app.add_subcommand("run", "run a scene and write its output folder");
+  c.run->add_option("scene", c.scene_path, "scene file (TOML); not with --restart");
+  c.run->add_option(
+      "--restart", c.restart_path,
+      "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
+      "run.max_steps, run.progress_interval, output.*)");
+  c.run->add_option(
+      "--out,-o", c.out_dir,
+      "output folder (default: out/<run.name>; with --restart, the checkpoint's folder)");
+  c.run->add_flag("--overwrite", c.overwrite,
+                  "empty an existing output folder of an earlier run first");
+  // One value per --set/--vary, so a scene named after them is not taken for another value.
+  c.run
+      ->add_option("--set", c.overrides,
+                   "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)")
+      ->allow_extra_args(false);
+  c.run->add_option("--threads,-t", c.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+}
+
+void add_sweep_command(CLI::App& app, CommandLine& c) {
+  c.sweep_cmd =
+      app.add_subcommand("sweep", "run every combination of scene overrides and summarise them");
+  c.sweep_cmd->add_option("scene", c.scene_path,
+                          "scene file (TOML); replaces the study file's scene");
+  c.sweep_cmd
+      ->add_option("--vary", c.varies,
+                   "key=v1,v2,... (one axis; repeatable); k1=a,b;k2=c,d changes keys together")
+      ->allow_extra_args(false);
+  c.sweep_cmd->add_option("--study", c.study_path,
+                          "study file (TOML: scene, [[vary]], set, stations, lift_threshold)");
+  c.sweep_cmd
+      ->add_option("--out,-o", c.out_dir,
+                   "output folder: one sub-folder per run, summary.csv, summary.h5")
+      ->required();
+  c.sweep_cmd->add_option("--set", c.overrides, "override a scene key in every run (repeatable)")
+      ->allow_extra_args(false);
+  c.sweep_cmd->add_flag("--overwrite", c.overwrite,
+                        "empty an existing sweep folder of an earlier sweep first");
+  c.sweep_cmd
+      ->add_option("--stations", c.sweep.stations,
+                   "x (m) of the h(x) columns (default: output.surface_stations)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  c.sweep_cmd
+      ->add_option("--lift-threshold", c.sweep.lift_threshold,
+                   fmt::format("m above the layer top that counts as lifted (default {:g})",
+                               kDefaultLiftThreshold))
+      ->check(CLI::PositiveNumber);
+  c.sweep_cmd->add_option("--threads,-t", c.threads, "OpenMP threads per run (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+}
+
+void add_info_command(CLI::App& app, CommandLine& c) {
+  c.info = app.add_subcommand("info",
+                              "print the resolved scene, enabled effects, grid and step estimate");
+  c.info->add_option("scene", c.info_scenes, "scene file (TOML); with --keys, one or more")
+      ->required();
+  c.info->add_flag(
+      "--keys", c.keys,
+      "print the scene-key reference (type, unit, default, allowed values, meaning) of "
+      "every key the scenes' parser reads, as Markdown");
+  c.info->add_option("--set", c.overrides, "override a scene key (repeatable)")
+      ->allow_extra_args(false);
+}
+
+/// `info`: a scene's resolved keys, effects, grid and step estimate, or with --keys the
+/// scene-key reference of one or more scene files.
+int info_command(const CommandLine& c) {
+  if (c.keys) {
+    if (!c.overrides.empty())
+      throw SceneError("info --keys: the reference is of the scene files as written (no --set)");
+    std::map<std::string, KeyFact> facts;
+    for (const std::string& path : c.info_scenes) merge_key_facts(facts, read_scene_keys(path));
+    fmt::print("{}", key_reference_markdown(facts));
+    return kExitSuccess;
+  }
+  if (c.info_scenes.size() != 1)
+    throw SceneError("info: give one scene file (several only with --keys)");
+  const Scene scene = load_scene(c.info_scenes.front(), c.overrides);
+  const Simulation sim(scene);
+  print_info(scene, sim);
+  return kExitSuccess;
+}
+
+/// `sweep`: every combination of the study's and the command line's overrides.
+int sweep_command(const CommandLine& c, const std::string& command_line) {
+  SweepDefinition definition = c.study_path.empty() ? SweepDefinition{} : read_study(c.study_path);
+  if (!c.scene_path.empty()) definition.scene_path = c.scene_path;
+  if (definition.scene_path.empty())
+    throw SceneError("sweep: give a scene file or a --study naming one");
+  for (const auto& v : c.varies) definition.axes.push_back(parse_vary(v));
+  definition.overrides.insert(definition.overrides.end(), c.overrides.begin(), c.overrides.end());
+  if (!c.sweep.stations.empty()) definition.stations = c.sweep.stations;
+  if (c.sweep_cmd->count("--lift-threshold") > 0)
+    definition.lift_threshold = c.sweep.lift_threshold;
+  return run_sweep(definition, c.out_dir, SweepOptions{c.threads, c.overwrite, command_line});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -156,70 +268,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("dustlift ") + code_version());
   app.require_subcommand(1);
   const std::string command_line = command_line_of(argc, argv);
-  bool overwrite = false;
-
-  std::string scene_path, out_dir, restart_path, study_path;
-  std::vector<std::string> overrides, varies;
-  int threads = 0;
-  SweepDefinition sweep;
-
-  auto* run = app.add_subcommand("run", "run a scene and write its output folder");
-  run->add_option("scene", scene_path, "scene file (TOML); not with --restart");
-  run->add_option(
-      "--restart", restart_path,
-      "continue from a checkpoint (the scene comes from it; --set only for run.end_time, "
-      "run.max_steps, run.progress_interval, output.*)");
-  run->add_option(
-      "--out,-o", out_dir,
-      "output folder (default: out/<run.name>; with --restart, the checkpoint's folder)");
-  run->add_flag("--overwrite", overwrite,
-                "empty an existing output folder of an earlier run first");
-  // One value per --set/--vary, so a scene named after them is not taken for another value.
-  run->add_option("--set", overrides, "override a scene key: --set gas.scheme.cfl=0.4 (repeatable)")
-      ->allow_extra_args(false);
-  run->add_option("--threads,-t", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-
-  auto* sweep_cmd =
-      app.add_subcommand("sweep", "run every combination of scene overrides and summarise them");
-  sweep_cmd->add_option("scene", scene_path, "scene file (TOML); replaces the study file's scene");
-  sweep_cmd
-      ->add_option("--vary", varies,
-                   "key=v1,v2,... (one axis; repeatable); k1=a,b;k2=c,d changes keys together")
-      ->allow_extra_args(false);
-  sweep_cmd->add_option("--study", study_path,
-                        "study file (TOML: scene, [[vary]], set, stations, lift_threshold)");
-  sweep_cmd
-      ->add_option("--out,-o", out_dir,
-                   "output folder: one sub-folder per run, summary.csv, summary.h5")
-      ->required();
-  sweep_cmd->add_option("--set", overrides, "override a scene key in every run (repeatable)")
-      ->allow_extra_args(false);
-  sweep_cmd->add_flag("--overwrite", overwrite,
-                      "empty an existing sweep folder of an earlier sweep first");
-  sweep_cmd
-      ->add_option("--stations", sweep.stations,
-                   "x (m) of the h(x) columns (default: output.surface_stations)")
-      ->delimiter(',')
-      ->allow_extra_args(false);
-  sweep_cmd
-      ->add_option("--lift-threshold", sweep.lift_threshold,
-                   fmt::format("m above the layer top that counts as lifted (default {:g})",
-                               kDefaultLiftThreshold))
-      ->check(CLI::PositiveNumber);
-  sweep_cmd->add_option("--threads,-t", threads, "OpenMP threads per run (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-
-  auto* info = app.add_subcommand(
-      "info", "print the resolved scene, enabled effects, grid and step estimate");
-  std::vector<std::string> info_scenes;
-  bool keys = false;
-  info->add_option("scene", info_scenes, "scene file (TOML); with --keys, one or more")->required();
-  info->add_flag("--keys", keys,
-                 "print the scene-key reference (type, unit, default, allowed values, meaning) of "
-                 "every key the scenes' parser reads, as Markdown");
-  info->add_option("--set", overrides, "override a scene key (repeatable)")
-      ->allow_extra_args(false);
+  CommandLine c;
+  add_run_command(app, c);
+  add_sweep_command(app, c);
+  add_info_command(app, c);
 
   try {
     app.parse(argc, argv);
@@ -227,42 +279,18 @@ int main(int argc, char** argv) {
     const int code = world->is_root() ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
     return code == 0 ? 0 : kExitBadInput;
   }
-  if (threads > 0) omp_set_num_threads(threads);
+  if (c.threads > 0) omp_set_num_threads(c.threads);
 
   try {
-    if (several && !run->parsed()) {
+    if (several && !c.run->parsed()) {
       throw SceneError(fmt::format(
           "only `dustlift run` runs on several MPI ranks ({} here); start `{}` without mpirun",
-          world->size(), info->parsed() ? "info" : "sweep"));
+          world->size(), c.info->parsed() ? "info" : "sweep"));
     }
-    if (info->parsed() && keys) {
-      if (!overrides.empty()) throw SceneError("info --keys: the reference is of the scene files as written (no --set)");
-      std::map<std::string, KeyFact> facts;
-      for (const std::string& path : info_scenes) merge_key_facts(facts, read_scene_keys(path));
-      fmt::print("{}", key_reference_markdown(facts));
-      return kExitSuccess;
-    }
-    if (info->parsed()) {
-      if (info_scenes.size() != 1) throw SceneError("info: give one scene file (several only with --keys)");
-      const Scene scene = load_scene(info_scenes.front(), overrides);
-      const Simulation sim(scene);
-      print_info(scene, sim);
-      return kExitSuccess;
-    }
-    if (sweep_cmd->parsed()) {
-      SweepDefinition definition = study_path.empty() ? SweepDefinition{} : read_study(study_path);
-      if (!scene_path.empty()) definition.scene_path = scene_path;
-      if (definition.scene_path.empty())
-        throw SceneError("sweep: give a scene file or a --study naming one");
-      for (const auto& v : varies) definition.axes.push_back(parse_vary(v));
-      definition.overrides.insert(definition.overrides.end(), overrides.begin(), overrides.end());
-      if (!sweep.stations.empty()) definition.stations = sweep.stations;
-      if (sweep_cmd->count("--lift-threshold") > 0)
-        definition.lift_threshold = sweep.lift_threshold;
-      return run_sweep(definition, out_dir, SweepOptions{threads, overwrite, command_line});
-    }
-    return run_command(scene_path, restart_path, out_dir, overrides, overwrite, command_line,
-                       several ? world.get() : nullptr);
+    if (c.info->parsed()) return info_command(c);
+    if (c.sweep_cmd->parsed()) return sweep_command(c, command_line);
+    return run_command(c.scene_path, c.restart_path, c.out_dir, c.overrides, c.overwrite,
+                       command_line, several ? world.get() : nullptr);
   } catch (const SceneError& e) {
     error(std::string("dustlift: error: ") + e.what());
     return kExitBadInput;

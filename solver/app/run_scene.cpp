@@ -75,21 +75,16 @@ std::string format_duration(double s) {
   return fmt::format("{}s", t);
 }
 
-RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOptions& options) {
-  const bool continuing =
-      options.restart != nullptr && same_folder(out_dir, options.restart_folder);
-  const FolderUse use = continuing          ? FolderUse::Continue
-                        : options.overwrite ? FolderUse::Overwrite
-                                            : FolderUse::Fresh;
-  const Communicator* comm =
-      options.comm != nullptr && options.comm->size() > 1 ? options.comm : nullptr;
-  const bool root = comm == nullptr || comm->is_root();
+namespace {
+
+/// The output folder may be used as `use` says; on several ranks rank 0 checks and every rank
+/// stops with its verdict before any collective step.
+void check_folder(const std::string& out_dir, FolderUse use, const Communicator* comm) {
   if (comm == nullptr) {
     check_output_folder(out_dir, use);
   } else {
-    // Rank 0 checks; every rank stops with its verdict before any collective step.
     std::string problem;
-    if (root) {
+    if (comm->is_root()) {
       try {
         check_output_folder(out_dir, use);
       } catch (const std::exception& e) {
@@ -99,8 +94,12 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
     problem = comm->first_nonempty(problem);
     if (!problem.empty()) throw SceneError(problem);
   }
-  Simulation sim(scene, comm);  // validates the whole setup before anything is written
-  sim.set_provenance({code_version(), options.command_line});
+}
+
+/// The run's observers on this rank (the caller's, the outputs, the checkpoint keeper);
+/// returns the checkpoint's path.
+std::string add_observers(Simulation& sim, const Scene& scene, const std::string& out_dir,
+                          const RunOptions& options, bool root) {
   if (root && options.extra_observers) {
     for (auto& o : options.extra_observers()) sim.add_observer(std::move(o));
   }
@@ -113,19 +112,13 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   if (root)
     write_file = [checkpoint_path](const Snapshot& s) { write_checkpoint(checkpoint_path, s); };
   sim.add_observer(std::make_unique<CheckpointKeeper>(scene.output, std::move(write_file)));
-  if (options.restart != nullptr) {
-    try {
-      sim.restore(*options.restart, options.restart_folder);
-    } catch (const SnapshotError& e) {
-      throw CheckpointError(options.scene_label + ": does not fit its scene: " + e.what());
-    }
-  }
-  if (root) {
-    prepare_output_folder(out_dir, use);
-    std::ofstream f(fs::path(out_dir) / "scene.resolved.toml");
-    f << resolved_scene_file(scene, options);
-  }
-  Log log(root ? fs::path(out_dir) / "run.log" : fs::path(), root && options.echo_log, continuing);
+  return checkpoint_path;
+}
+
+/// The log's opening lines: the code, the command, threads and ranks, a restart, the effects
+/// and the layer.
+void log_start(Log& log, const Simulation& sim, const Scene& scene, const RunOptions& options,
+               const std::string& out_dir, const Communicator* comm, bool continuing) {
   log.line(fmt::format("dustlift {}", code_version()));
   log.line(fmt::format("command: {}", options.command_line));
   log.line(fmt::format(
@@ -146,12 +139,62 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
         "run to "
         "the new end (end times that are multiples of output.interval continue bit for bit)");
   }
-
   for (const auto& e : sim.enabled_effects()) log.line("  " + e);
   if (sim.parcels() != nullptr) {
     log.line("  " + describe_layer(scene.particles));
     if (layer_settles(scene.particles.layer)) log.line("  " + sim.bed_description());
   }
+}
+
+/// The log's closing lines: how to continue an interrupted run, or what a finished one did.
+void log_end(Log& log, RunOutcome& outcome, RunEnd how, const Simulation& sim,
+             const std::string& checkpoint_path) {
+  if (how == RunEnd::Interrupted) {
+    outcome.exit_code = kExitInterrupted;
+    log.line(fmt::format(
+        "dustlift: interrupted by {} at t = {:.6e} s after {} steps; checkpoint written to {}",
+        outcome.signal, sim.time(), sim.step(), checkpoint_path));
+    if (const int joined = InterruptHandler::joined_signals(); joined > 0)
+      log.line(fmt::format(
+          "dustlift: {} more signal(s) within {} ms of the first counted as the same stop request",
+          joined, kStopSignalWindow.count()));
+    log.line(fmt::format("continue with: dustlift run --restart {}", checkpoint_path));
+  } else if (outcome.exit_code == kExitSuccess) {
+    log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(),
+                         sim.step(), outcome.wall_seconds));
+    log.line(sim.work_summary());  // collective: every rank's cell updates
+  }
+}
+
+}  // namespace
+
+RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOptions& options) {
+  const bool continuing =
+      options.restart != nullptr && same_folder(out_dir, options.restart_folder);
+  const FolderUse use = continuing          ? FolderUse::Continue
+                        : options.overwrite ? FolderUse::Overwrite
+                                            : FolderUse::Fresh;
+  const Communicator* comm =
+      options.comm != nullptr && options.comm->size() > 1 ? options.comm : nullptr;
+  const bool root = comm == nullptr || comm->is_root();
+  check_folder(out_dir, use, comm);
+  Simulation sim(scene, comm);  // validates the whole setup before anything is written
+  sim.set_provenance({code_version(), options.command_line});
+  const std::string checkpoint_path = add_observers(sim, scene, out_dir, options, root);
+  if (options.restart != nullptr) {
+    try {
+      sim.restore(*options.restart, options.restart_folder);
+    } catch (const SnapshotError& e) {
+      throw CheckpointError(options.scene_label + ": does not fit its scene: " + e.what());
+    }
+  }
+  if (root) {
+    prepare_output_folder(out_dir, use);
+    std::ofstream f(fs::path(out_dir) / "scene.resolved.toml");
+    f << resolved_scene_file(scene, options);
+  }
+  Log log(root ? fs::path(out_dir) / "run.log" : fs::path(), root && options.echo_log, continuing);
+  log_start(log, sim, scene, options, out_dir, comm, continuing);
   sim.set_log([&](const std::string& s) { log.line(s); });
   if (root)
     sim.set_progress_callback([&](const Progress& p) {
@@ -182,21 +225,7 @@ RunOutcome run_scene(const Scene& scene, const std::string& out_dir, const RunOp
   outcome.time = sim.time();
   outcome.steps = sim.step();
   if (outcome.exit_code == kExitSuccess) outcome.checkpoint = checkpoint_path;
-  if (how == RunEnd::Interrupted) {
-    outcome.exit_code = kExitInterrupted;
-    log.line(fmt::format(
-        "dustlift: interrupted by {} at t = {:.6e} s after {} steps; checkpoint written to {}",
-        outcome.signal, sim.time(), sim.step(), checkpoint_path));
-    if (const int joined = InterruptHandler::joined_signals(); joined > 0)
-      log.line(fmt::format(
-          "dustlift: {} more signal(s) within {} ms of the first counted as the same stop request",
-          joined, kStopSignalWindow.count()));
-    log.line(fmt::format("continue with: dustlift run --restart {}", checkpoint_path));
-  } else if (outcome.exit_code == kExitSuccess) {
-    log.line(fmt::format("done: t = {:.6e} s after {} steps in {:.2f} s wall", sim.time(),
-                         sim.step(), outcome.wall_seconds));
-    log.line(sim.work_summary());  // collective: every rank's cell updates
-  }
+  log_end(log, outcome, how, sim, checkpoint_path);
   return outcome;
 }
 

@@ -1,56 +1,41 @@
 #include "solver/sim/derived_fields.hpp"
 
-#include "solver/core/derivatives.hpp"
+#include <stdexcept>
+#include <string>
 
 namespace dustlift {
 
 void DerivedFields::show(const Grid2D* grid, const GasPrimitives& gas, const Field2D* alpha_p,
                          double particle_density, long long step) {
-  if (grid != grid_ || gas.u != gas_.u || gas.v != gas_.v || alpha_p != alpha_p_ ||
-      particle_density != particle_density_)
+  if (grid != inputs_.grid || gas.u != inputs_.gas.u || gas.v != inputs_.gas.v ||
+      alpha_p != inputs_.alpha_p || particle_density != inputs_.particle_density)
     step_ = -1;  // another state entirely
-  if (step != step_) vorticity_step_ = concentration_step_ = -2;
-  grid_ = grid;
-  gas_ = gas;
-  alpha_p_ = alpha_p;
-  particle_density_ = particle_density;
+  if (step != step_)
+    for (Made& m : made_) m.step = -2;
+  inputs_.grid = grid;
+  inputs_.gas = gas;
+  inputs_.alpha_p = alpha_p;
+  inputs_.particle_density = particle_density;
   step_ = step;
 }
 
-namespace {
-/// Sizes `f` to the grid once (a field keeps its storage between steps).
-void fit(Field2D& f, int& nx, int& ny, const Grid2D& grid) {
-  if (nx != grid.nx() || ny != grid.ny()) {
-    f = Field2D(grid);
-    nx = grid.nx();
-    ny = grid.ny();
+const Field2D& DerivedFields::field(std::size_t index) const {
+  const GasField& f = gas_fields()[index];
+  if (f.made != GasFieldMade::OncePerStep)
+    throw std::invalid_argument("gas field " + std::string(f.name) + " is not made per step");
+  if (made_.size() != gas_fields().size()) made_.resize(gas_fields().size());
+  Made& m = made_[index];
+  if (m.step != step_ || step_ < 0) {
+    const Grid2D& grid = *inputs_.grid;
+    if (m.nx != grid.nx() || m.ny != grid.ny()) {  // sized once: the storage is kept
+      m.values = Field2D(grid);
+      m.nx = grid.nx();
+      m.ny = grid.ny();
+    }
+    f.make(inputs_, m.values);
+    m.step = step_;
   }
-}
-}  // namespace
-
-const Field2D& DerivedFields::vorticity() const {
-  if (vorticity_step_ != step_ || step_ < 0) {
-    fit(vorticity_, vorticity_nx_, vorticity_ny_, *grid_);
-    vorticity_z_rows(*grid_, *gas_.u, *gas_.v, 0, grid_->ny(), vorticity_);
-    vorticity_step_ = step_;
-  }
-  return vorticity_;
-}
-
-void fill_dust_concentration(const Grid2D& grid, const Field2D* alpha_p, double particle_density,
-                             Field2D& out) {
-  for (int j = 0; j < grid.ny(); ++j)
-    for (int i = 0; i < grid.nx(); ++i)
-      out(i, j) = alpha_p != nullptr ? particle_density * (*alpha_p)(i, j) : 0.0;
-}
-
-const Field2D& DerivedFields::dust_concentration() const {
-  if (concentration_step_ != step_ || step_ < 0) {
-    fit(concentration_, concentration_nx_, concentration_ny_, *grid_);
-    fill_dust_concentration(*grid_, alpha_p_, particle_density_, concentration_);
-    concentration_step_ = step_;
-  }
-  return concentration_;
+  return m.values;
 }
 
 }  // namespace dustlift

@@ -1,17 +1,16 @@
 #pragma once
-// Fields made from the state for the observers, at most once per step of the view that shows
-// them: the VTK writer, Catalyst, the near-layer and dust-cloud series read the same vorticity
-// and dust concentration.
+// The gas fields made once per step (gas_fields.hpp: GasFieldMade::OncePerStep), at most once
+// per step of the view that shows them: the VTK writer, Catalyst, the near-layer and
+// dust-cloud series read the same vorticity and dust concentration.
+#include <string_view>
+#include <vector>
+
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
 #include "solver/gas/gas_solver.hpp"
+#include "solver/sim/gas_fields.hpp"
 
 namespace dustlift {
-
-/// Dust concentration c = rho_p alpha_p (kg/m^3) on the interior cells of `grid` into `out`
-/// (a field of that grid); zeros when `alpha_p` is null (a gas-only scene).
-void fill_dust_concentration(const Grid2D& grid, const Field2D* alpha_p, double particle_density,
-                             Field2D& out);
 
 class DerivedFields {
  public:
@@ -22,26 +21,23 @@ class DerivedFields {
             double particle_density, long long step);
   /// Forgets what was made (the state changed without a step: a restore).
   void forget() { step_ = -1; }
-  /// w_z = dv/dx - du/dy on the interior cells (derivatives.hpp). On an MPI rank's slab the
-  /// derivatives at its cuts read the ghost columns, which hold the neighbours' cells: the
-  /// values are the whole grid's.
-  const Field2D& vorticity() const;
-  /// Dust concentration c = rho_p alpha_p (kg of real particles per m^3 of space) on the
-  /// interior cells, from the deposit the coupling made (eq. 12); zero in a gas-only scene.
-  const Field2D& dust_concentration() const;
+  /// What the fields are made from (no sound speed: the writer that needs one adds it).
+  const GasFieldInputs& inputs() const { return inputs_; }
+  /// The field of gas_fields() entry `index` (one made once per step) on the interior cells.
+  const Field2D& field(std::size_t index) const;
+  /// The same by name.
+  const Field2D& field(std::string_view name) const { return field(gas_field_index(name)); }
 
  private:
-  const Grid2D* grid_ = nullptr;
-  GasPrimitives gas_{};
-  const Field2D* alpha_p_ = nullptr;
-  double particle_density_ = 0.0;
+  /// One field of the registry as made: its storage is kept between steps.
+  struct Made {
+    Field2D values;
+    long long step = -2;
+    int nx = -1, ny = -1;
+  };
+  GasFieldInputs inputs_;
   long long step_ = -1;
-  mutable Field2D vorticity_;
-  mutable long long vorticity_step_ = -2;
-  mutable int vorticity_nx_ = -1, vorticity_ny_ = -1;
-  mutable Field2D concentration_;
-  mutable long long concentration_step_ = -2;
-  mutable int concentration_nx_ = -1, concentration_ny_ = -1;
+  mutable std::vector<Made> made_;  ///< per gas_fields() entry
 };
 
 }  // namespace dustlift

@@ -17,11 +17,9 @@ std::string fmt_number(double v) {
   return s.str();
 }
 
-}  // namespace
-
-std::vector<std::string> Simulation::enabled_effects() const {
-  std::vector<std::string> e;
-  const auto& g = scene_.gas;
+/// The gas's lines: its model, transport, scheme, skipping at rest and the initial shock.
+void gas_effects(const Scene& scene, std::vector<std::string>& e) {
+  const auto& g = scene.gas;
   e.push_back(g.thermo.model == ThermoModel::ThermallyPerfect
                   ? "gas: thermally perfect air (NASA polynomials, O2:N2 = 1:3.76)"
                   : "gas: calorically perfect (gamma = " + fmt_number(g.thermo.gamma) + ")");
@@ -47,15 +45,15 @@ std::vector<std::string> Simulation::enabled_effects() const {
   if (g.has_gravity())
     e.push_back("gravity on the gas: [" + fmt_number(g.gravity_x) + ", " + fmt_number(g.gravity_y) +
                 "] m/s^2 (no cell skipped at rest)");
-  else if (!scene_.run.skip_at_rest)
+  else if (!scene.run.skip_at_rest)
     e.push_back("skipping at rest: off (every cell and parcel computed every step)");
-  else if (scene_.run.rest_tolerance > 0.0)
-    e.push_back("skipping at rest: within a relative " + fmt_number(scene_.run.rest_tolerance) +
+  else if (scene.run.rest_tolerance > 0.0)
+    e.push_back("skipping at rest: within a relative " + fmt_number(scene.run.rest_tolerance) +
                 " of the resting state (also skips the rounding noise ahead of a shock; results "
                 "change at that level)");
   else
     e.push_back("skipping at rest: exact (bitwise the same results as without)");
-  const InitialCondition& ic = scene_.initial;
+  const InitialCondition& ic = scene.initial;
   if (ic.kind == InitialCondition::Kind::Shock) {
     // The Rankine-Hugoniot state the inflow holds: what the run's shock should settle to.
     const ShockJump j = normal_shock(ic.state, ic.mach, g.thermo, ic.axis);
@@ -67,15 +65,12 @@ std::vector<std::string> Simulation::enabled_effects() const {
       << " kg/m^3, gas at " << (ic.axis == 'x' ? j.post.u : j.post.v) << " m/s";
     e.push_back(s.str());
   }
-  if (!scene_.particles.enabled) {
-    e.push_back("particles: none (gas only)");
-    return e;
-  }
-  const auto& d = scene_.particles;
-  const auto& c = scene_.coupling;
+}
+
+/// The particles' line: parcels, real particles and the contact law.
+std::string particles_line(const DemConfig& d, std::size_t parcels) {
   std::ostringstream s;
-  s << "particles: " << (parcels_ ? parcels_->size() : 0) << " DEM parcels of "
-    << d.parcel_diameter * 1e6 << " um holding ";
+  s << "particles: " << parcels << " DEM parcels of " << d.parcel_diameter * 1e6 << " um holding ";
   if (d.size_classes.empty()) {
     s << d.real_per_parcel << " real particles of " << d.particle_diameter * 1e6 << " um per metre";
   } else {
@@ -88,7 +83,21 @@ std::vector<std::string> Simulation::enabled_effects() const {
     << contact_restitution(0.5 * d.density * sphere_volume(d.particle_diameter), d.contact.k_n,
                            d.contact.damping)
     << " between two particles of " << d.particle_diameter * 1e6 << " um)";
-  e.push_back(s.str());
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<std::string> Simulation::enabled_effects() const {
+  std::vector<std::string> e;
+  gas_effects(scene_, e);
+  if (!scene_.particles.enabled) {
+    e.push_back("particles: none (gas only)");
+    return e;
+  }
+  const auto& d = scene_.particles;
+  const auto& c = scene_.coupling;
+  e.push_back(particles_line(d, parcels_ ? parcels_->size() : 0));
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"
                         : "coupling: one-way (gas does not feel the particles)");
   if (coupling_) {

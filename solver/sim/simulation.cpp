@@ -56,6 +56,13 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
 
 Simulation::~Simulation() = default;
 
+long long Simulation::replace_slab(int first_column, int end_column) {
+  const long long retired = gas_ ? gas_->cell_updates() : 0;
+  grid_ = whole_grid_.slice_x(first_column, end_column);
+  gas_ = std::make_unique<GasSolver>(grid_, gas_config_);  // holds grid_: made after it
+  return retired;
+}
+
 const SlabLayout& Simulation::slab() const {
   return slabs_ ? slabs_->layout() : one_slab_;
 }

@@ -4,15 +4,16 @@
 // simulation.cpp sets up and steps, run_loop.cpp runs the schedule, run_report.cpp writes
 // what the run did, snapshot.cpp saves and restores it; a run on several MPI ranks adds its
 // SlabDriver (slab_driver.hpp).
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "solver/core/communicator.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
-#include "solver/core/communicator.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/derived_fields.hpp"
@@ -113,6 +114,13 @@ class Simulation {
   ParcelSystem* parcels() { return parcels_.get(); }
   const ParcelSystem* parcels() const { return parcels_.get(); }
   const GasParticleCoupling* coupling() const { return coupling_.get(); }
+  GasParticleCoupling* coupling() { return coupling_.get(); }
+  /// The gas's configuration (what a new slab's gas is made with).
+  const GasConfig& gas_config() const { return gas_config_; }
+  /// A run on several ranks: makes this rank's grid the columns [first_column, end_column) of
+  /// the whole grid and a new, uninitialised gas on it (the split, and every move of the
+  /// cuts). Returns the cell updates the replaced gas had made (0 when there was none).
+  long long replace_slab(int first_column, int end_column);
 
   /// What the run computed (gas cell-stage updates against the full grid, DEM sub-steps and
   /// neighbour rebuilds) and where the wall time went, for the log.
@@ -132,10 +140,33 @@ class Simulation {
   std::vector<std::string> enabled_effects() const;
 
  private:
-  friend class SlabDriver;  // replaces the slab's grid and gas when the cuts move
   bool any_rank(bool value) const;
   /// kg/m^3 of the real particles (0 in a gas-only scene): the dust concentration's factor.
-  double particle_density() const { return scene_.particles.enabled ? scene_.particles.density : 0.0; }
+  double particle_density() const {
+    return scene_.particles.enabled ? scene_.particles.density : 0.0;
+  }
+  /// restore()'s steps: the parcels, the DEM's internals and the coupling's carried state
+  /// (checked on a copy, then swapped in); the gas fields read before (conserved, sources,
+  /// porosity, primitives) into this rank's grid.
+  void restore_parcels(const Snapshot& s, std::size_t cells);
+  void assign_gas(const std::array<const std::vector<double>*, 14>& gas_fields);
+  /// run()'s steps. What a decomposed run gathers on rank 0 for the observers of the whole
+  /// state (gather: at all; output_reads: Observer::StepRead bits at outputs, rank 0's).
+  struct GatherPlan {
+    bool gather = false;
+    unsigned output_reads = 0;
+  };
+  /// The previous progress report's simulated time and wall seconds (eta.hpp).
+  struct EtaMark {
+    double time = 0.0, wall = 0.0;
+  };
+  void count_from_here();  ///< the work counters at the start of run(), for work_summary()
+  GatherPlan plan_gathers() const;
+  void start_observers(const std::string& output_dir, const GatherPlan& plan);
+  /// After a step: the gather its readers need, on_step, and on_output when one is due.
+  void observe_step(const std::string& output_dir, const GatherPlan& plan, bool output_due);
+  bool checkpoints_due(const RunClock& now);  ///< any keeper's, on any rank
+  void report_progress(const RunClock& now, double end, double dt, EtaMark& eta);
   /// Builds the snapshot (collectively) and hands it to the checkpoint keepers.
   void make_checkpoint(const RunClock& now);
   /// The view an observer's calls get: its piece on several ranks when it writes pieces.

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/communicator.hpp"
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
-#include "solver/core/communicator.hpp"
 #include "solver/parallel/parcel_slabs.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/parallel/slab_halo.hpp"
@@ -67,6 +67,14 @@ class SlabDriver {
 
  private:
   void build_slab_gas();
+  /// rebalance()'s steps: the work per column of the whole grid, the same on every rank; the
+  /// parcels (packed) and alpha_p (its rows touched last) whole on every rank; the gas
+  /// state moved to the slabs between `bounds`; the parcels split again at the new cuts.
+  std::vector<double> whole_column_work() const;
+  void broadcast_whole_parcels(std::vector<double>& parcels_whole,
+                               std::vector<double>& alpha_whole) const;
+  void move_gas(const std::vector<int>& bounds);
+  void resplit_parcels(std::vector<double>& parcels_whole, std::vector<double>& alpha_whole);
   /// x of the slab cuts, where the parcels are split too.
   std::vector<double> parcel_cuts() const;
   /// with_lists: the contact history and the DEM's own state too (a checkpoint).

@@ -1,6 +1,7 @@
 // Simulation::snapshot / restore: the state a bitwise continuation needs, by name.
 // What is (and is not) in it and why: docs/reliability.md.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -107,6 +108,92 @@ Snapshot Simulation::snapshot() const {
   return s;
 }
 
+namespace {
+
+/// Each observer's state, checked as it is taken.
+void restore_observers(const std::vector<std::unique_ptr<Observer>>& observers, const Snapshot& s) {
+  for (const auto& o : observers) {
+    const std::string key = o->state_key();
+    if (key.empty()) continue;
+    const std::string prefix = observer_prefix(key);
+    const auto has_prefix = [&](const auto& m) {
+      const auto it = m.lower_bound(prefix);
+      return it != m.end() && it->first.compare(0, prefix.size(), prefix) == 0;
+    };
+    if (!has_prefix(s.f64) && !has_prefix(s.i64) && !has_prefix(s.text)) {
+      throw SnapshotError("no state for the in-situ output '" + key +
+                          "' (a checkpoint of an older dustlift, or of a run with other outputs)");
+    }
+    o->restore_state(s, prefix);
+  }
+}
+
+/// The whole grid's gas fields, read (and their lengths checked) before anything is assigned.
+using StoredGas = std::array<const std::vector<double>*, 14>;
+StoredGas read_gas(const Snapshot& s, std::size_t cells) {
+  StoredGas gas_fields{};
+  for (int k = 0; k < 4; ++k) {
+    gas_fields[k] = &snapshot_array(s.f64, "gas/conserved_" + std::to_string(k), cells);
+    gas_fields[4 + k] = &snapshot_array(s.f64, "gas/source_" + std::to_string(k), cells);
+  }
+  gas_fields[8] = &snapshot_array(s.f64, "gas/porosity", cells);
+  for (int k = 0; k < 5; ++k)
+    gas_fields[9 + k] = &snapshot_array(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
+  return gas_fields;
+}
+
+/// The parcel columns a checkpoint holds (`n` parcels), the neighbour lists with their
+/// history and the DEM's internals, into `restored` and `in`.
+void read_parcel_columns(const Snapshot& s, std::size_t n, bool has_attached,
+                         ParcelSystem& restored, ParcelInternals& in) {
+  in.needs_rebuild = snapshot_array(s.i64, "dem/needs_rebuild", 1)[0] != 0;
+  restored.for_each_column([&](const ParcelColumnSpec& c, auto& v) {
+    using E = typename std::remove_reference_t<decltype(v)>::value_type;
+    if (!c.checkpointed) return;
+    const std::string name = checkpoint_name(c);
+    const std::size_t rows = n * static_cast<std::size_t>(c.per_parcel);
+    const auto& map = snapshot_map<E>(s);
+    if (c.flow == ColumnFlow::Rebuilt) {
+      // Made by the next rebuild when the checkpoint lacks it (older checkpoints have no skins).
+      const auto it = map.find(name);
+      if (it == map.end() || it->second.size() != rows) {
+        v.clear();
+        in.needs_rebuild = true;
+      } else {
+        v.assign(it->second.begin(), it->second.end());
+      }
+    } else if (c.checkpoint_name.empty() && !has_attached) {
+      std::fill(v.begin(), v.end(), E{});
+    } else {
+      const auto& stored = snapshot_array(map, name, rows);
+      v.assign(stored.begin(), stored.end());
+    }
+  });
+  restored.nbr_delta = snapshot_array(s.f64, "parcels/nbr_delta");
+  restored.nbr_offset = snapshot_array(s.i32, "parcels/nbr_offset");
+  restored.nbr_index = snapshot_array(s.i32, "parcels/nbr_index");
+  restored.nbr_image = snapshot_array(s.i8, "parcels/nbr_image");
+  in.time = snapshot_array(s.f64, "dem/time", 1)[0];
+  const auto& gravity = snapshot_array(s.f64, "dem/gravity", 2);
+  in.gravity_x = gravity[0];
+  in.gravity_y = gravity[1];
+  in.steps = snapshot_array(s.i64, "dem/steps", 1)[0];
+  in.rebuilds = snapshot_array(s.i64, "dem/rebuilds", 1)[0];
+}
+
+/// Ids must be a permutation of 0..n-1 (they name the parcels in the outputs).
+void check_ids(const std::vector<std::int32_t>& ids, std::size_t n) {
+  std::vector<char> seen(n, 0);
+  for (std::int32_t i : ids) {
+    if (i < 0 || static_cast<std::size_t>(i) >= n || seen[static_cast<std::size_t>(i)]) {
+      throw SnapshotError("parcels/id is not a permutation of 0.." + std::to_string(n - 1));
+    }
+    seen[static_cast<std::size_t>(i)] = 1;
+  }
+}
+
+}  // namespace
+
 void Simulation::restore(const Snapshot& s, const std::string& previous_output_dir) {
   const auto shape = snapshot_array(s.i64, "gas/shape", 2);
   if (shape[0] != whole_grid_.ny() + 2 * whole_grid_.ghosts() ||
@@ -127,126 +214,11 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
   const std::size_t cells = whole_grid_.size_with_ghosts();
   // The observers first: their state is checked as it is taken, and a failure leaves the
   // simulation untouched (a failed restore ends the program anyway).
-  for (const auto& o : observers_) {
-    const std::string key = o->state_key();
-    if (key.empty()) continue;
-    const std::string prefix = observer_prefix(key);
-    const auto has_prefix = [&](const auto& m) {
-      const auto it = m.lower_bound(prefix);
-      return it != m.end() && it->first.compare(0, prefix.size(), prefix) == 0;
-    };
-    if (!has_prefix(s.f64) && !has_prefix(s.i64) && !has_prefix(s.text)) {
-      throw SnapshotError("no state for the in-situ output '" + key +
-                          "' (a checkpoint of an older dustlift, or of a run with other outputs)");
-    }
-    o->restore_state(s, prefix);
-  }
+  restore_observers(observers_, s);
   // Read everything first, assign after: a failing restore leaves nothing half-written.
-  std::array<const std::vector<double>*, 14> gas_fields{};
-  for (int k = 0; k < 4; ++k) {
-    gas_fields[k] = &snapshot_array(s.f64, "gas/conserved_" + std::to_string(k), cells);
-    gas_fields[4 + k] = &snapshot_array(s.f64, "gas/source_" + std::to_string(k), cells);
-  }
-  gas_fields[8] = &snapshot_array(s.f64, "gas/porosity", cells);
-  for (int k = 0; k < 5; ++k)
-    gas_fields[9 + k] = &snapshot_array(s.f64, std::string("gas/") + kPrimitiveNames[k], cells);
-
-  if (parcels_) {
-    ParcelSystem& p = *parcels_;
-    // A decomposed run reads the whole system on every rank and splits it again below.
-    const std::size_t n = slabs_ ? total_parcels_ : p.size();
-    ParcelSystem restored = p;  // validated on the copy, then swapped in
-    if (slabs_) {
-      restored.drop_decomposition();
-      // Columns the checkpoint does not hold are made anew within each step: sized only.
-      for (std::size_t k = 0; k < restored.attached_count(); ++k)
-        restored.attached(k).assign(n, 0.0);
-    }
-    // Attached columns a restart needs; checkpoints from before they were kept have none,
-    // which leaves them zero (the rest counts then start anew: exact skipping is unaffected).
-    const bool has_attached = s.f64.count("coupling/rest_reference") != 0;
-    ParcelInternals in;
-    in.needs_rebuild = snapshot_array(s.i64, "dem/needs_rebuild", 1)[0] != 0;
-    restored.for_each_column([&](const ParcelColumnSpec& c, auto& v) {
-      using E = typename std::remove_reference_t<decltype(v)>::value_type;
-      if (!c.checkpointed) return;
-      const std::string name = checkpoint_name(c);
-      const std::size_t rows = n * static_cast<std::size_t>(c.per_parcel);
-      const auto& map = snapshot_map<E>(s);
-      if (c.flow == ColumnFlow::Rebuilt) {
-        // Made by the next rebuild when the checkpoint lacks it (older checkpoints have no skins).
-        const auto it = map.find(name);
-        if (it == map.end() || it->second.size() != rows) {
-          v.clear();
-          in.needs_rebuild = true;
-        } else {
-          v.assign(it->second.begin(), it->second.end());
-        }
-      } else if (c.checkpoint_name.empty() && !has_attached) {
-        std::fill(v.begin(), v.end(), E{});
-      } else {
-        const auto& stored = snapshot_array(map, name, rows);
-        v.assign(stored.begin(), stored.end());
-      }
-    });
-    restored.nbr_delta = snapshot_array(s.f64, "parcels/nbr_delta");
-    restored.nbr_offset = snapshot_array(s.i32, "parcels/nbr_offset");
-    restored.nbr_index = snapshot_array(s.i32, "parcels/nbr_index");
-    restored.nbr_image = snapshot_array(s.i8, "parcels/nbr_image");
-    in.time = snapshot_array(s.f64, "dem/time", 1)[0];
-    const auto& gravity = snapshot_array(s.f64, "dem/gravity", 2);
-    in.gravity_x = gravity[0];
-    in.gravity_y = gravity[1];
-    in.steps = snapshot_array(s.i64, "dem/steps", 1)[0];
-    in.rebuilds = snapshot_array(s.i64, "dem/rebuilds", 1)[0];
-    // Ids must be a permutation of 0..n-1 (they name the parcels in the outputs).
-    std::vector<char> seen(n, 0);
-    for (std::int32_t i : restored.id) {
-      if (i < 0 || static_cast<std::size_t>(i) >= n || seen[static_cast<std::size_t>(i)]) {
-        throw SnapshotError("parcels/id is not a permutation of 0.." + std::to_string(n - 1));
-      }
-      seen[static_cast<std::size_t>(i)] = 1;
-    }
-    try {
-      restored.restore_internals(in);
-    } catch (const std::invalid_argument& e) {
-      throw SnapshotError(e.what());
-    }
-    GasParticleCoupling::CarriedState c;
-    c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);
-    if (slabs_) {
-      std::vector<double> slab;
-      extract_slab(c.alpha_p, whole_grid_, slabs_->layout(), slab);
-      c.alpha_p.swap(slab);
-      slabs_->split(restored);
-    }
-    c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
-    if (has_attached) {
-      const auto& ref = snapshot_array(s.f64, "coupling/rest_reference", 2);
-      c.rest_p = ref[0];
-      c.rest_T = ref[1];
-    }
-    try {
-      coupling_->restore_carried_state(c);
-    } catch (const std::invalid_argument& e) {
-      throw SnapshotError(e.what());
-    }
-    p = std::move(restored);
-  }
-  // A slab takes its columns and the ghost columns beyond them (its neighbours' cells).
-  const auto assign = [&](Field2D& f, const std::vector<double>& whole) {
-    if (slabs_) {
-      extract_slab(whole, whole_grid_, slabs_->layout(), f.raw());
-    } else {
-      f.raw() = whole;
-    }
-  };
-  for (int k = 0; k < 4; ++k) {
-    assign(gas_->conserved(k), *gas_fields[k]);
-    assign(gas_->source(k), *gas_fields[4 + k]);
-  }
-  assign(gas_->porosity(), *gas_fields[8]);
-  for (int k = 0; k < 5; ++k) assign(gas_->primitive_field(k), *gas_fields[9 + k]);
+  const StoredGas gas_fields = read_gas(s, cells);
+  if (parcels_) restore_parcels(s, cells);
+  assign_gas(gas_fields);
   time_ = t;
   step_ = step;
   // A restart may change output.interval: the next output is then the first multiple after t.
@@ -261,6 +233,66 @@ void Simulation::restore(const Snapshot& s, const std::string& previous_output_d
   derived_piece_.forget();
   restored_ = true;
   resumed_from_ = previous_output_dir;
+}
+
+void Simulation::restore_parcels(const Snapshot& s, std::size_t cells) {
+  ParcelSystem& p = *parcels_;
+  // A decomposed run reads the whole system on every rank and splits it again below.
+  const std::size_t n = slabs_ ? total_parcels_ : p.size();
+  ParcelSystem restored = p;  // validated on the copy, then swapped in
+  if (slabs_) {
+    restored.drop_decomposition();
+    // Columns the checkpoint does not hold are made anew within each step: sized only.
+    for (std::size_t k = 0; k < restored.attached_count(); ++k) restored.attached(k).assign(n, 0.0);
+  }
+  // Attached columns a restart needs; checkpoints from before they were kept have none,
+  // which leaves them zero (the rest counts then start anew: exact skipping is unaffected).
+  const bool has_attached = s.f64.count("coupling/rest_reference") != 0;
+  ParcelInternals in;
+  read_parcel_columns(s, n, has_attached, restored, in);
+  check_ids(restored.id, n);
+  try {
+    restored.restore_internals(in);
+  } catch (const std::invalid_argument& e) {
+    throw SnapshotError(e.what());
+  }
+  GasParticleCoupling::CarriedState c;
+  c.alpha_p = snapshot_array(s.f64, "coupling/alpha_p", cells);
+  if (slabs_) {
+    std::vector<double> slab;
+    extract_slab(c.alpha_p, whole_grid_, slabs_->layout(), slab);
+    c.alpha_p.swap(slab);
+    slabs_->split(restored);
+  }
+  c.rows_touched = static_cast<int>(snapshot_array(s.i64, "coupling/rows_touched", 1)[0]);
+  if (has_attached) {
+    const auto& ref = snapshot_array(s.f64, "coupling/rest_reference", 2);
+    c.rest_p = ref[0];
+    c.rest_T = ref[1];
+  }
+  try {
+    coupling_->restore_carried_state(c);
+  } catch (const std::invalid_argument& e) {
+    throw SnapshotError(e.what());
+  }
+  p = std::move(restored);
+}
+
+void Simulation::assign_gas(const std::array<const std::vector<double>*, 14>& gas_fields) {
+  // A slab takes its columns and the ghost columns beyond them (its neighbours' cells).
+  const auto assign = [&](Field2D& f, const std::vector<double>& whole) {
+    if (slabs_) {
+      extract_slab(whole, whole_grid_, slabs_->layout(), f.raw());
+    } else {
+      f.raw() = whole;
+    }
+  };
+  for (int k = 0; k < 4; ++k) {
+    assign(gas_->conserved(k), *gas_fields[k]);
+    assign(gas_->source(k), *gas_fields[4 + k]);
+  }
+  assign(gas_->porosity(), *gas_fields[8]);
+  for (int k = 0; k < 5; ++k) assign(gas_->primitive_field(k), *gas_fields[9 + k]);
 }
 
 }  // namespace dustlift

@@ -14,15 +14,15 @@ inline GasCellArrays synthetic_gas() {
   g.resize(g.nx(), g.ny());
   for (std::size_t k = 0; k < g.cells(); ++k) {
     const double s = static_cast<double>(k);
-    g.density[k] = 1.2 + 0.01 * s;
-    g.velocity_x[k] = 100.0 + s;
-    g.velocity_y[k] = -3.0 * s;
-    g.pressure[k] = 101325.0 + 17.0 * s;
-    g.temperature[k] = 300.0 + 0.5 * s;
-    g.mach[k] = 0.001 * s;
-    g.alpha_p[k] = s / 100.0;
-    g.vorticity[k] = 1e4 * std::sin(s);
-    g.dust_concentration[k] = 2.5 * s;
+    g.values("density")[k] = 1.2 + 0.01 * s;
+    g.values("velocity", 0)[k] = 100.0 + s;
+    g.values("velocity", 1)[k] = -3.0 * s;
+    g.values("pressure")[k] = 101325.0 + 17.0 * s;
+    g.values("temperature")[k] = 300.0 + 0.5 * s;
+    g.values("mach")[k] = 0.001 * s;
+    g.values("alpha_p")[k] = s / 100.0;
+    g.values("vorticity")[k] = 1e4 * std::sin(s);
+    g.values("dust_concentration")[k] = 2.5 * s;
   }
   return g;
 }

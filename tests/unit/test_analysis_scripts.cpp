@@ -109,8 +109,8 @@ TEST_F(AnalysisScripts, SodCompareReadsTheLastVtrAndMeasuresTheL1Error) {
   VtkSeriesFiles files(dir.string(), "gas", "vtr");
   for (double t : {0.0, 0.1}) {
     for (std::size_t k = 0; k < g.cells(); ++k) {
-      g.density[k] = t > 0 ? 1.01 : 5.0;  // the t = 0 file must not be the one read
-      g.pressure[k] = 1.0;
+      g.values("density")[k] = t > 0 ? 1.01 : 5.0;  // the t = 0 file must not be the one read
+      g.values("pressure")[k] = 1.0;
     }
     write_gas_vtr(g, files.next_path(t));
     files.commit(t);
@@ -148,9 +148,9 @@ TEST_F(AnalysisScripts, SummarizeRunPrintsTheReadmeLinesFromTheSeriesAndTheLastV
   g.y_nodes = {0.0, 0.01};
   g.resize(g.nx(), g.ny());
   for (std::size_t k = 0; k < g.cells(); ++k) {
-    g.density[k] = 1.2 + 0.1 * static_cast<double>(k);
-    g.pressure[k] = 1e5 + 1e3 * static_cast<double>(k);
-    g.alpha_p[k] = 0.1 * static_cast<double>(k);
+    g.values("density")[k] = 1.2 + 0.1 * static_cast<double>(k);
+    g.values("pressure")[k] = 1e5 + 1e3 * static_cast<double>(k);
+    g.values("alpha_p")[k] = 0.1 * static_cast<double>(k);
   }
   VtkSeriesFiles files(dir.string(), "gas", "vtr");
   write_gas_vtr(g, files.next_path(2e-5));

@@ -51,27 +51,27 @@ void write_synthetic_run(const fs::path& dir) {
       for (std::size_t i = 0; i < g.nx(); ++i) {
         const std::size_t k = i + g.nx() * j;
         const bool behind = xc[i] < xs;
-        g.pressure[k] = behind ? 2.2e5 - 2e5 * std::exp(-yc[j] / 3e-3) * 0.2 : 1.01325e5;
-        g.density[k] = behind ? 2.0 : 1.2;
-        g.velocity_x[k] = behind ? 250.0 * (1.0 - std::exp(-yc[j] / 1e-3)) : 0.0;
-        g.velocity_y[k] = behind ? 5.0 * std::sin(200.0 * xc[i]) : 0.0;
-        g.temperature[k] = behind ? 380.0 : 300.0;
-        g.mach[k] = g.velocity_x[k] / 340.0;
-        g.alpha_p[k] = yc[j] < 2e-3 ? 0.59 : 0.0;
+        g.values("pressure")[k] = behind ? 2.2e5 - 2e5 * std::exp(-yc[j] / 3e-3) * 0.2 : 1.01325e5;
+        g.values("density")[k] = behind ? 2.0 : 1.2;
+        g.values("velocity", 0)[k] = behind ? 250.0 * (1.0 - std::exp(-yc[j] / 1e-3)) : 0.0;
+        g.values("velocity", 1)[k] = behind ? 5.0 * std::sin(200.0 * xc[i]) : 0.0;
+        g.values("temperature")[k] = behind ? 380.0 : 300.0;
+        g.values("mach")[k] = g.values("velocity", 0)[k] / 340.0;
+        g.values("alpha_p")[k] = yc[j] < 2e-3 ? 0.59 : 0.0;
         // A dust cloud over the layer behind the shock, thinning upwards over decades.
-        g.dust_concentration[k] = yc[j] < 2e-3 ? 578.0
-                                  : behind     ? 578.0 * std::exp(-(yc[j] - 2e-3) / 0.4e-3)
-                                               : 0.0;
+        g.values("dust_concentration")[k] = yc[j] < 2e-3 ? 578.0
+                                            : behind ? 578.0 * std::exp(-(yc[j] - 2e-3) / 0.4e-3)
+                                                     : 0.0;
       }
     {
       const Grid2D grid(Axis(g.x_nodes, 2), Axis(g.y_nodes, 2));
       Field2D u(grid), v(grid);
       for (std::size_t j = 0; j < g.ny(); ++j)
         for (std::size_t i = 0; i < g.nx(); ++i) {
-          u(static_cast<int>(i), static_cast<int>(j)) = g.velocity_x[i + g.nx() * j];
-          v(static_cast<int>(i), static_cast<int>(j)) = g.velocity_y[i + g.nx() * j];
+          u(static_cast<int>(i), static_cast<int>(j)) = g.values("velocity", 0)[i + g.nx() * j];
+          v(static_cast<int>(i), static_cast<int>(j)) = g.values("velocity", 1)[i + g.nx() * j];
         }
-      g.vorticity = vorticity_z(grid, u, v);
+      g.values("vorticity") = vorticity_z(grid, u, v);
     }
     write_gas_vtr(g, gas_files.next_path(t));
     gas_files.commit(t);

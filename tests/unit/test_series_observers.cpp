@@ -9,6 +9,7 @@
 #include "insitu/observers.hpp"
 #include "insitu/series_table.hpp"
 #include "solver/core/field.hpp"
+#include "solver/sim/derived_fields.hpp"
 #include "tests/support/scratch_dir.hpp"
 
 namespace dustlift {
@@ -19,6 +20,8 @@ struct SyntheticState {
               Axis({0.0, 0.001, 0.002, 0.0035, 0.0055, 0.008}, 2)};
   Field2D rho{grid, 1.2}, u{grid}, v{grid}, p{grid, 1e5}, T{grid, 300.0}, alpha_g{grid, 1.0};
   std::filesystem::path dir;
+  mutable DerivedFields derived;  // as the run makes them: each view a step of its own
+  mutable long long step = 0;
 
   explicit SyntheticState(const std::string& name)
       : dir(testing::scratch_dir("observers_" + name, false)) {}
@@ -28,7 +31,9 @@ struct SyntheticState {
     for (int j = 0; j < grid.ny(); ++j)
       for (int i = 0; i < grid.nx(); ++i) {
         p(i, j) = grid.x().center(i) < xs ? 2e5 : 1e5;
-        const double alpha_p = j < layer_cells - 1 ? 0.5 : j == layer_cells - 1 ? 0.5 * top_fill : 0.0;
+        const double alpha_p = j < layer_cells - 1    ? 0.5
+                               : j == layer_cells - 1 ? 0.5 * top_fill
+                                                      : 0.0;
         alpha_g(i, j) = i < 4 ? 1.0 - alpha_p : 1.0;  // column 4 has no particles
       }
   }
@@ -38,6 +43,9 @@ struct SyntheticState {
     s.primitives = GasPrimitives{&rho, &u, &v, &p, &T, &alpha_g};
     s.time = t;
     s.output_dir = dir.string();
+    s.step = ++step;
+    derived.show(s.grid, s.primitives, nullptr, 0.0, s.step);
+    s.derived = &derived;
     return s;
   }
 };

@@ -24,9 +24,9 @@
 #include "insitu/gas_cells.hpp"
 #include "insitu/parcel_arrays.hpp"
 #include "insitu/vtk_writers.hpp"
-#include "solver/core/derivatives.hpp"
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
+#include "solver/sim/derived_fields.hpp"
 #include "support/synthetic_gas.hpp"
 #include "tests/support/scratch_dir.hpp"
 
@@ -47,19 +47,12 @@ GasCellArrays columns_of(const GasCellArrays& whole, std::size_t i0, std::size_t
                    whole.x_nodes.begin() + static_cast<long>(i1) + 1);
   p.y_nodes = whole.y_nodes;
   p.resize(i1 - i0, whole.ny());
-  const auto copy = [&](const std::vector<double>& from, std::vector<double>& to) {
-    for (std::size_t j = 0; j < whole.ny(); ++j)
-      for (std::size_t i = i0; i < i1; ++i) to[(i - i0) + (i1 - i0) * j] = from[i + whole.nx() * j];
-  };
-  copy(whole.density, p.density);
-  copy(whole.velocity_x, p.velocity_x);
-  copy(whole.velocity_y, p.velocity_y);
-  copy(whole.pressure, p.pressure);
-  copy(whole.temperature, p.temperature);
-  copy(whole.mach, p.mach);
-  copy(whole.alpha_p, p.alpha_p);
-  copy(whole.vorticity, p.vorticity);
-  copy(whole.dust_concentration, p.dust_concentration);
+  for (std::size_t a = 0; a < whole.arrays.size(); ++a)
+    for (std::size_t c = 0; c < whole.arrays[a].components.size(); ++c)
+      for (std::size_t j = 0; j < whole.ny(); ++j)
+        for (std::size_t i = i0; i < i1; ++i)
+          p.arrays[a].components[c][(i - i0) + (i1 - i0) * j] =
+              whole.arrays[a].components[c][i + whole.nx() * j];
   return p;
 }
 
@@ -92,14 +85,14 @@ TEST(GasPieces, TheSummaryJoinsThePiecesIntoTheWholeGrid) {
   EXPECT_EQ(values(grid->GetYCoordinates(), 0), whole.y_nodes);
   vtkCellData* cd = grid->GetCellData();
   EXPECT_EQ(cd->GetNumberOfArrays(), 8);
-  EXPECT_EQ(values(cd->GetArray("density"), 0), whole.density);
-  EXPECT_EQ(values(cd->GetArray("velocity"), 0), whole.velocity_x);
-  EXPECT_EQ(values(cd->GetArray("velocity"), 1), whole.velocity_y);
-  EXPECT_EQ(values(cd->GetArray("pressure"), 0), whole.pressure);
-  EXPECT_EQ(values(cd->GetArray("temperature"), 0), whole.temperature);
-  EXPECT_EQ(values(cd->GetArray("mach"), 0), whole.mach);
-  EXPECT_EQ(values(cd->GetArray("alpha_p"), 0), whole.alpha_p);
-  EXPECT_EQ(values(cd->GetArray("vorticity"), 0), whole.vorticity);
+  EXPECT_EQ(values(cd->GetArray("density"), 0), whole.values("density"));
+  EXPECT_EQ(values(cd->GetArray("velocity"), 0), whole.values("velocity", 0));
+  EXPECT_EQ(values(cd->GetArray("velocity"), 1), whole.values("velocity", 1));
+  EXPECT_EQ(values(cd->GetArray("pressure"), 0), whole.values("pressure"));
+  EXPECT_EQ(values(cd->GetArray("temperature"), 0), whole.values("temperature"));
+  EXPECT_EQ(values(cd->GetArray("mach"), 0), whole.values("mach"));
+  EXPECT_EQ(values(cd->GetArray("alpha_p"), 0), whole.values("alpha_p"));
+  EXPECT_EQ(values(cd->GetArray("vorticity"), 0), whole.values("vorticity"));
   EXPECT_THROW(write_gas_pvtr(whole, {0, 7}, sources, (dir / "bad.pvtr").string()),
                std::invalid_argument);
 }
@@ -117,14 +110,10 @@ TEST(GasPieces, ASlabsEdgeColumnsReadItsGhostsForTheWholeGridsVorticity) {
       v(i, j) = 40.0 + 5.0 * x * x * x + y;
     }
   const auto sound = [](int, int) { return 340.0; };
-  const auto vorticity = [](const Grid2D& g, const Field2D& uf, const Field2D& vf) {
-    Field2D w(g);
-    vorticity_z_rows(g, uf, vf, 0, g.ny(), w);
-    return w;
-  };
+  DerivedFields whole_fields, slab_fields;  // as the run makes them, one per view
+  whole_fields.show(&whole, {&rho, &u, &v, &p, &T, &ag}, nullptr, 0.0, 1);
   GasCellArrays one;
-  gather_gas_cells(whole, {&rho, &u, &v, &p, &T, &ag}, nullptr, vorticity(whole, u, v), nullptr, sound,
-                   one);
+  gather_gas_cells(whole_fields, sound, one);
   const std::vector<int> bounds{0, 3, 7};
   for (int r = 0; r < 2; ++r) {
     const Grid2D slab =
@@ -141,13 +130,13 @@ TEST(GasPieces, ASlabsEdgeColumnsReadItsGhostsForTheWholeGridsVorticity) {
     // The slab's axis carries the whole axis's derivative stencils: at a cut they reach into
     // the ghost column, which holds the neighbour's cell.
     GasCellArrays piece;
-    gather_gas_cells(slab, {&sr, &su, &sv, &sp, &sT, &sa}, nullptr, vorticity(slab, su, sv), nullptr,
-                     sound, piece);
+    slab_fields.show(&slab, {&sr, &su, &sv, &sp, &sT, &sa}, nullptr, 0.0, r + 1);
+    gather_gas_cells(slab_fields, sound, piece);
     const GasCellArrays expected =
         columns_of(one, static_cast<std::size_t>(bounds[static_cast<std::size_t>(r)]),
                    static_cast<std::size_t>(bounds[static_cast<std::size_t>(r) + 1]));
-    EXPECT_EQ(piece.vorticity, expected.vorticity) << "slab " << r;
-    EXPECT_EQ(piece.velocity_x, expected.velocity_x) << "slab " << r;
+    EXPECT_EQ(piece.values("vorticity"), expected.values("vorticity")) << "slab " << r;
+    EXPECT_EQ(piece.values("velocity", 0), expected.values("velocity", 0)) << "slab " << r;
     EXPECT_EQ(piece.x_nodes, expected.x_nodes) << "slab " << r;
   }
 }

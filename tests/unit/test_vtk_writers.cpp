@@ -21,10 +21,12 @@
 
 #include "insitu/gas_cells.hpp"
 #include "insitu/observers.hpp"
+#include "insitu/vtk_datasets.hpp"
 #include "insitu/vtk_writers.hpp"
-#include "solver/core/derivatives.hpp"
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
+#include "solver/sim/derived_fields.hpp"
+#include "solver/sim/gas_fields.hpp"
 #include "support/synthetic_gas.hpp"
 #include "tests/support/scratch_dir.hpp"
 
@@ -91,14 +93,16 @@ TEST(VtkGasWriter, RectilinearGridRoundTripsEveryArray) {
   expect_array(grid->GetYCoordinates(), gas.y_nodes, "y nodes");
   vtkCellData* cd = grid->GetCellData();
   EXPECT_EQ(cd->GetNumberOfArrays(), 8);
-  expect_array(cd->GetArray("density"), gas.density, "density");
-  expect_vector(cd->GetArray("velocity"), gas.velocity_x, gas.velocity_y, "velocity");
-  expect_array(cd->GetArray("pressure"), gas.pressure, "pressure");
-  expect_array(cd->GetArray("temperature"), gas.temperature, "temperature");
-  expect_array(cd->GetArray("mach"), gas.mach, "mach");
-  expect_array(cd->GetArray("alpha_p"), gas.alpha_p, "alpha_p");
-  expect_array(cd->GetArray("vorticity"), gas.vorticity, "vorticity");
-  expect_array(cd->GetArray("dust_concentration"), gas.dust_concentration, "dust_concentration");
+  expect_array(cd->GetArray("density"), gas.values("density"), "density");
+  expect_vector(cd->GetArray("velocity"), gas.values("velocity", 0), gas.values("velocity", 1),
+                "velocity");
+  expect_array(cd->GetArray("pressure"), gas.values("pressure"), "pressure");
+  expect_array(cd->GetArray("temperature"), gas.values("temperature"), "temperature");
+  expect_array(cd->GetArray("mach"), gas.values("mach"), "mach");
+  expect_array(cd->GetArray("alpha_p"), gas.values("alpha_p"), "alpha_p");
+  expect_array(cd->GetArray("vorticity"), gas.values("vorticity"), "vorticity");
+  expect_array(cd->GetArray("dust_concentration"), gas.values("dust_concentration"),
+               "dust_concentration");
   // Cell (i, j) = (3, 2) is VTK cell 3 + 7*2 and lies between the matching nodes.
   double bounds[6];
   grid->GetCell(3 + 7 * 2)->GetBounds(bounds);
@@ -110,7 +114,7 @@ TEST(VtkGasWriter, RectilinearGridRoundTripsEveryArray) {
 
 TEST(VtkGasWriter, MismatchedArrayIsRejected) {
   GasCellArrays gas = synthetic_gas();
-  gas.pressure.pop_back();
+  gas.values("pressure").pop_back();
   EXPECT_THROW(write_gas_vtr(gas, (fresh_dir("bad") / "x.vtr").string()), std::invalid_argument);
 }
 
@@ -125,26 +129,47 @@ TEST(GasCells, GatheredFromFieldsWithMachAlphaPAndVorticity) {
     }
   u(-1, 0) = 1e9;  // ghosts must not leak into the output
   const GasPrimitives prims{&rho, &u, &v, &p, &T, &ag};
-  GasCellArrays out;
-  Field2D w(grid);
-  vorticity_z_rows(grid, u, v, 0, grid.ny(), w);
-  Field2D c(grid);
+  // The deposited alpha_p (here 1 - alpha_g) and 1500 kg/m^3 particles: c = 1500 alpha_p.
+  Field2D ap(grid);
   for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 4; ++i) c(i, j) = 1.5 * i + 7.0 * j;
+    for (int i = 0; i < 4; ++i) ap(i, j) = 0.01 * (i + 10 * j);
+  DerivedFields fields;
+  fields.show(&grid, prims, &ap, 1500.0, 1);
+  GasCellArrays out;
   gather_gas_cells(
-      grid, prims, nullptr, w, &c, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
+      fields, [](int i, int j) { return 340.0 + i + 2.0 * j; }, out);
   ASSERT_EQ(out.nx(), 4u);
   ASSERT_EQ(out.ny(), 3u);
   EXPECT_EQ(out.x_nodes, grid.x().interior_faces());
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 4; ++i) {
       const std::size_t k = static_cast<std::size_t>(i + 4 * j);
-      EXPECT_NEAR(out.mach[k], std::hypot(u(i, j), v(i, j)) / (340.0 + i + 2.0 * j), 1e-15);
-      EXPECT_NEAR(out.alpha_p[k], 0.01 * (i + 10 * j), 1e-15);
-      EXPECT_NEAR(out.vorticity[k], 5.0 - 2.0, 1e-11);
-      EXPECT_EQ(out.dust_concentration[k], 1.5 * i + 7.0 * j);
-      EXPECT_EQ(out.velocity_x[k], u(i, j));
+      EXPECT_NEAR(out.values("mach")[k], std::hypot(u(i, j), v(i, j)) / (340.0 + i + 2.0 * j),
+                  1e-15);
+      EXPECT_NEAR(out.values("alpha_p")[k], 0.01 * (i + 10 * j), 1e-15);
+      EXPECT_NEAR(out.values("vorticity")[k], 5.0 - 2.0, 1e-11);
+      EXPECT_EQ(out.values("dust_concentration")[k], 1500.0 * ap(i, j));
+      EXPECT_EQ(out.values("velocity", 0)[k], u(i, j));
     }
+}
+
+TEST(GasCells, OneArrayPerRegistryFieldInItsOrder) {
+  // The writers and Catalyst hold the registry's fields, in its order, under its names.
+  const GasCellArrays gas = synthetic_gas();
+  ASSERT_EQ(gas.arrays.size(), gas_fields().size());
+  ASSERT_EQ(gas_fields().size(), 8u);
+  for (std::size_t k = 0; k < gas.arrays.size(); ++k) {
+    EXPECT_EQ(gas.arrays[k].name, gas_fields()[k].name);
+    EXPECT_EQ(gas.arrays[k].components.size(),
+              static_cast<std::size_t>(gas_fields()[k].components));
+  }
+  vtkSmartPointer<vtkRectilinearGrid> grid = make_gas_grid(gas);
+  set_gas_cell_data(grid, gas);
+  for (std::size_t k = 0; k < gas.arrays.size(); ++k)
+    EXPECT_EQ(grid->GetCellData()->GetArrayName(static_cast<int>(k)), gas.arrays[k].name);
+  EXPECT_EQ(gas_fields()[gas_field_index("dust_concentration")].unit, "kg/m^3");
+  EXPECT_EQ(gas_fields()[gas_field_index("vorticity")].made, GasFieldMade::OncePerStep);
+  EXPECT_THROW(gas_field_index("no_such_field"), std::invalid_argument);
 }
 
 TEST(VtkParcelWriter, PolyDataRoundTripsEveryArray) {
@@ -288,13 +313,18 @@ TEST(VtkGasWriterObserver, WritesOneFilePerOutputTimeAndAValidCollection) {
   view.grid = &grid;
   view.primitives = GasPrimitives{&rho, &u, &v, &p, &T, &ag};
   view.output_dir = dir.string();
+  DerivedFields fields;  // as the run makes them, a step per view
+  fields.show(view.grid, view.primitives, nullptr, 0.0, 0);
+  view.derived = &fields;
   // Ideal-gas sound speed from the view's fields (no GasSolver in this test).
   auto writer = make_vtk_gas_writer([](const StateView& s, int i, int j) {
     return std::sqrt(1.4 * (*s.primitives.p)(i, j) / (*s.primitives.rho)(i, j));
   });
   writer->on_start(view);
   view.time = 1e-5;
+  view.step = 1;
   p.fill(2e5);
+  fields.show(view.grid, view.primitives, nullptr, 0.0, view.step);
   writer->on_output(view);
   writer->on_finish(view);  // same time: overwrites gas_000001.vtr
   const std::string pvd = read_text(dir / "gas.pvd");
