@@ -1,19 +1,30 @@
 #!/usr/bin/python3
-"""The shock-particle-curtain validation: runs of cases/validation/curtain_ms166.toml against
-the measured curtain fronts (Wagner et al. 2012, as plotted by Ling et al. 2012, Fig. 14).
+"""The shock-particle-curtain validation: ensembles of runs of cases/validation/curtain_ms166.toml
+against the measured curtain fronts (Wagner et al. 2012, as plotted by Ling et al. 2012, Fig. 14).
 
-Usage: /usr/bin/python3 analysis/validation.py RUNS_DIR [--wall SECONDS] [--markdown docs/validation.md]
-                                              [--figures docs/validation] [--command "..."]
+Usage:
+  /usr/bin/python3 analysis/validation.py --list
+      the runs to make, one per line: folder, seeds, then the scene overrides (tab-separated);
+      scripts/validate.sh reads it, so the settings live here only
+  /usr/bin/python3 analysis/validation.py RUNS_DIR [--wall SECONDS] [--markdown docs/validation.md]
+                                          [--figures docs/validation] [--command "..."] [--date D]
 
-RUNS_DIR holds one run folder per setting (scripts/validate.sh names them, see SETTINGS) with
-series/parcel_fronts.csv. Fronts are measured from the curtain's initial upstream edge
-(particles.layer.x_min of the run's resolved scene) at t from the start (the shock is at that
-edge at t = 0). The upstream front is the outermost parcel upstream (x_min), the downstream
-one the outermost downstream (x_max); the 1 % / 99 % points are drawn too.
+RUNS_DIR holds RUNS_DIR/<setting>/seed<k>/ run folders with series/parcel_fronts.csv,
+series/line_of_sight.csv and series/parcel_force_totals.csv. Fronts are measured from the
+curtain's initial upstream edge (particles.layer.x_min) at t from the start (the shock is at that
+edge at t = 0).
 
-A run's agreement at a measured time is |ours - measured| / tolerance, the tolerance being the
-error bar's half-length on the side of the difference (where the bar hides behind its marker,
-the marker's half size: the bar is shorter). Within the bars: every such ratio <= 1.
+The experiment's fronts are the edges a schlieren image through the tube shows: a line of sight
+across ~1e5 beads. A run's front is therefore the edge of its line of sight (the optical depth
+n (pi d^2/4) D of the beads through the tube's 76.2 mm, in 0.25 mm bins, against 1: the light
+dimmed to 1/e), and a setting's front is that of its ensemble: the optical depth averaged over its
+seeds, so that each bead sample adds to one picture as the experiment's beads do. The outermost
+parcels (an extreme of the sample, which moves out as the sample grows) and the 1 % / 99 % points
+are shown beside it.
+
+A front's agreement at a measured time is |ours - measured| / tolerance, the tolerance being the
+error bar's half-length on the side of the difference (where the bar hides behind its marker, the
+marker's half size). Within the bars: every such ratio <= 1.
 """
 import argparse
 import csv
@@ -30,29 +41,50 @@ import numpy as np  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "cases", "validation", "data")
 
-# (folder, label, what it switches; closures and forces of docs/coupling.md)
+H16 = ["grid.y.end=0.016", "grid.y.cells=64", "particles.layer.y_max=0.016"]
+SEEDS = 5
+CLOSURE = "coupling.volume_fraction_correction"
+# (folder, label, what it switches, overrides): every setting on the 16 mm channel (646 parcels a
+# run) with SEEDS bead samples; the scene itself is the recommended physics.
 SETTINGS = [
-    ("paper", "paper effects (Sangani)", "drag x Parmar xi_1 x Sangani xi_2, pressure, Magnus, torque, heat (the paper's)"),
-    ("tenneti", "Tenneti", "as paper, Tenneti et al. 2011 for the dense array instead of Sangani"),
-    ("paper_added_mass", "Sangani + added mass", "as paper + added mass (Parmar 2008 x Zuber)"),
-    ("tenneti_added_mass", "Tenneti + added mass", "as Tenneti + added mass"),
-    ("linear_added_mass", "linear + added mass", "as paper with 1 + 5.94 alpha_p + added mass"),
-    ("none_added_mass", "no crowding + added mass", "isolated-sphere drag (xi_2 = 1) + added mass"),
-    ("standard_drag", "standard drag only", "Clift-Gauvin drag only (no xi_1, xi_2, pressure, added mass, Magnus, torque)"),
+    ("recommended", "recommended: Osnes + resolved added mass",
+     "Osnes et al. 2023 drag; added mass of the resolved flow (Parmar et al. 2008, Béguin et al. 2016); pressure, "
+     "Magnus, torque, heat: the scene as it is", []),
+    ("osnes", "Osnes, no added mass", "as recommended without the added mass", ["coupling.added_mass=false"]),
+    ("tenneti", "Tenneti + resolved added mass", "Tenneti et al. 2011 as published instead of Osnes",
+     [f'{CLOSURE}="tenneti"']),
+    ("sangani", "Sangani + resolved added mass", "the paper's compressible drag with Sangani's crowding instead of Osnes",
+     [f'{CLOSURE}="sangani"']),
+    ("paper", "the paper's closures", "Sangani's crowding, no added mass (the paper's effects)",
+     [f'{CLOSURE}="sangani"', "coupling.added_mass=false"]),
+    ("ling2012", "Ling et al. 2012's closures", "Sangani's crowding with the added mass as -C_M V_p grad p and Zuber's "
+     "factor", [f'{CLOSURE}="sangani"', 'coupling.added_mass_fluid_acceleration="pressure_gradient"',
+                'coupling.added_mass_volume_fraction="zuber"']),
+    ("standard", "standard drag only", "Clift-Gauvin drag alone (Ling et al.'s reference line)",
+     ["coupling.compressibility_correction=false", f'{CLOSURE}="none"', "coupling.added_mass=false",
+      "coupling.pressure_force=false", "coupling.magnus=false", "coupling.rotation_torque=false"]),
 ]
-# The recommended run: the scene as it is (paper effects + added mass, 64 mm channel)
-RECOMMENDED_LABEL = "recommended: Sangani + added mass, 2,588 parcels"
-# (folder, label) of the resolution study of the recommended closures (paper effects + added mass)
-CONVERGENCE = [
-    ("rec_cells_05", "0.5 mm cells, 16 mm channel (646 parcels)"),
-    ("paper_added_mass", "0.25 mm cells, 16 mm channel (646 parcels)"),
-    ("rec_cells_0125", "0.125 mm cells (1.1 particle diameters), 16 mm channel"),
-    ("rec_height_4mm", "0.25 mm cells, 4 mm channel (162 parcels)"),
-    ("rec_height_32mm", "0.25 mm cells, 32 mm channel (1,292 parcels)"),
-    ("recommended", "0.25 mm cells, 64 mm channel (2,588 parcels): the scene"),
-    ("rec_height_128mm", "0.25 mm cells, 128 mm channel (5,176 parcels)"),
+# (folder, label, seeds, overrides): the recommended physics on other samples and beads
+STUDIES = [
+    ("height_4mm", "4 mm channel (162 parcels a run)", SEEDS,
+     ["grid.y.end=0.004", "grid.y.cells=16", "particles.layer.y_max=0.004"]),
+    ("height_64mm", "64 mm channel (2,588 parcels a run): the scene", 2, []),
+    ("polydisperse", "beads of 106-125 µm in four classes (the sieve range)", SEEDS,
+     H16 + ["particles.size_distribution.diameters=[106e-6, 112e-6, 118e-6, 124e-6]",
+            "particles.size_distribution.mass_fractions=[0.25, 0.25, 0.25, 0.25]"]),
+    ("cells_0125", "0.125 mm cells (1.1 bead diameters)", 1,
+     H16[:1] + ["grid.y.cells=128", "particles.layer.y_max=0.016", "grid.x.cell_size=0.125e-3",
+                "grid.x.cells_below=120", "grid.x.cells_above=100"]),
 ]
 TABLE_TIMES_US = [120, 240, 360, 480, 600, 690]
+THRESHOLDS = [0.3, 1.0, 3.0]  # optical depths the edge is shown at (1: the scene's)
+
+
+def runs_to_make():
+    for name, _, _, overrides in SETTINGS:
+        yield name, SEEDS, H16 + overrides
+    for name, _, seeds, overrides in STUDIES:
+        yield name, seeds, overrides
 
 
 def read_experiment(path=os.path.join(DATA, "curtain_ms166_fronts_experiment.csv")):
@@ -85,25 +117,73 @@ def read_ling(path=os.path.join(DATA, "curtain_ms166_fronts_ling2012_simulation.
     return {h: np.array(v) for h, v in cols.items()}
 
 
-def read_run(folder):
-    """(t_us, {x_min, x_p01, x_p99, x_max} in mm from the curtain's upstream edge), wall s."""
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    data = np.array([[float(v) for v in r] for r in rows[1:] if r])
+    return {h: data[:, k] for k, h in enumerate(rows[0])}
+
+
+def read_seed(folder):
+    """One run: its fronts (mm from the curtain's upstream edge), optical-depth profile, force
+    totals and wall time."""
     with open(os.path.join(folder, "scene.resolved.toml"), "rb") as f:
         scene = tomllib.load(f)
     x0 = scene["particles"]["layer"]["x_min"]
-    with open(os.path.join(folder, "series", "parcel_fronts.csv"), newline="") as f:
-        rows = list(csv.reader(f))
-    header = rows[0]
-    data = np.array([[float(v) for v in r] for r in rows[1:] if r])
-    col = {h: data[:, k] for k, h in enumerate(header)}
-    t_us = col["time_s"] * 1e6
-    fronts = {k: (col[k + "_m"] - x0) * 1e3 for k in ("x_min", "x_p01", "x_p99", "x_max")}
+    fr = read_csv(os.path.join(folder, "series", "parcel_fronts.csv"))
+    fronts = {k: (fr[k + "_m"] - x0) * 1e3 for k in ("x_min", "x_p01", "x_p99", "x_max", "x_sight_up", "x_sight_down")}
+    sight = read_csv(os.path.join(folder, "series", "line_of_sight.csv"))
+    # The bins' width: the resolved scene's key, or (a derived default, written as a comment)
+    # the smallest spacing of the bin centres.
+    bin_m = scene.get("output", {}).get("line_of_sight", {}).get("bin")
+    if bin_m is None:
+        steps = np.diff(np.unique(np.round(sight["x_m"], 12)))
+        bin_m = float(steps[steps > 0].min())
+    totals = read_csv(os.path.join(folder, "series", "parcel_force_totals.csv"))
     wall = np.nan
-    log = os.path.join(folder, "run.log")
-    if os.path.exists(log):
-        for line in open(log):
-            if line.startswith("done:") and " s wall" in line:
-                wall = float(line.split(" in ")[-1].split(" s wall")[0])
-    return t_us, fronts, wall
+    for line in open(os.path.join(folder, "run.log")):
+        if line.startswith("done:") and " s wall" in line:
+            wall = float(line.split(" in ")[-1].split(" s wall")[0])
+    return {"t_us": fr["time_s"] * 1e6, "fronts": fronts, "sight": sight, "totals": totals, "wall": wall,
+            "x0": x0, "bin": bin_m}
+
+
+def edges(tau_by_bin, bin_mm, threshold):
+    """Outermost crossings of `threshold` of {bin index: tau} (bins of width bin_mm at index * bin_mm),
+    linear between bin centres, as the solver finds them (insitu/parcel_fronts.cpp)."""
+    if not tau_by_bin:
+        return np.nan, np.nan
+    first, last = min(tau_by_bin), max(tau_by_bin)
+    tau = np.array([tau_by_bin.get(k, 0.0) for k in range(first, last + 1)])
+    centre = (np.arange(first, last + 1) + 0.5) * bin_mm
+    up = down = np.nan
+    hit = np.nonzero(tau >= threshold)[0]
+    if len(hit):
+        b = hit[0]
+        before = tau[b - 1] if b > 0 else 0.0
+        up = centre[b] - bin_mm * (tau[b] - threshold) / (tau[b] - before)
+        b = hit[-1]
+        after = tau[b + 1] if b + 1 < len(tau) else 0.0
+        down = centre[b] + bin_mm * (tau[b] - threshold) / (tau[b] - after)
+    return up, down
+
+
+def ensemble(seeds, threshold=1.0):
+    """The line-of-sight fronts of the seeds' mean optical depth (mm from the upstream edge), at
+    the first seed's output times."""
+    t_us = seeds[0]["t_us"]
+    bin_mm = seeds[0]["bin"] * 1e3
+    up, down = np.full(len(t_us), np.nan), np.full(len(t_us), np.nan)
+    for k, t in enumerate(t_us):
+        mean = {}
+        for s in seeds:
+            rows = np.isclose(s["sight"]["time_s"] * 1e6, t, atol=1e-3)
+            for x, tau in zip(s["sight"]["x_m"][rows], s["sight"]["optical_depth_1"][rows]):
+                b = int(np.floor(x / s["bin"]))
+                mean[b] = mean.get(b, 0.0) + tau / len(seeds)
+        u, d = edges(mean, bin_mm, threshold)
+        up[k], down[k] = u - seeds[0]["x0"] * 1e3, d - seeds[0]["x0"] * 1e3
+    return t_us, up, down
 
 
 def agreement(t_us, ours, measured):
@@ -114,40 +194,91 @@ def agreement(t_us, ours, measured):
     return x, np.abs(diff) / tol
 
 
-def score(run, exp):
-    """Within-bar counts and the RMS of the bar-normalised error over both fronts."""
-    t, fronts, _ = run
-    _, up = agreement(t, fronts["x_min"], exp["upstream"])
-    _, down = agreement(t, fronts["x_max"], exp["downstream"])
-    both = np.concatenate([up, down])
-    return {"up_in": int((up <= 1).sum()), "up_n": len(up), "down_in": int((down <= 1).sum()), "down_n": len(down),
-            "rms": float(np.sqrt(np.mean(both ** 2))), "worst": float(both.max())}
+def score(t_us, up, down, exp):
+    _, a = agreement(t_us, up, exp["upstream"])
+    _, b = agreement(t_us, down, exp["downstream"])
+    both = np.concatenate([a, b])
+    return {"up_in": int((a <= 1).sum()), "up_n": len(a), "down_in": int((b <= 1).sum()), "down_n": len(b),
+            "rms": float(np.sqrt(np.mean(both ** 2))), "worst": float(both.max()),
+            "all_in": float(((a <= 1).sum() + (b <= 1).sum()) / len(both))}
 
 
-def plot(runs, exp, ling, labels, recommended, path):
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharey=True)
+def force_share(seeds, after_us=20.0):
+    """The summed added-mass force against the summed pressure-gradient force after `after_us`
+    (the shock crosses the 2 mm curtain in 3.5 us): (|their sums over the particles and the
+    outputs| ratio, mean over the seeds; the largest ratio at one output, over the seeds). NaN
+    without the added mass."""
+    sums, worst = [], np.nan
+    for s in seeds:
+        tot = s["totals"]
+        if "added_mass_x_N_per_m" not in tot or "pressure_x_N_per_m" not in tot:
+            return np.nan, np.nan
+        later = tot["time_s"] * 1e6 > after_us
+        am, pr = tot["added_mass_x_N_per_m"][later], tot["pressure_x_N_per_m"][later]
+        sums.append(abs(am.sum()) / abs(pr.sum()))
+        worst = np.nanmax([worst, (np.abs(am) / np.abs(pr)).max()])
+    return float(np.mean(sums)), float(worst)
+
+
+def summarise(folder):
+    seeds = []
+    if not os.path.isdir(folder):
+        return None
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if name.startswith("seed") and os.path.exists(os.path.join(path, "series", "line_of_sight.csv")):
+            seeds.append(read_seed(path))
+    if not seeds:
+        return None
+    t_us, up, down = ensemble(seeds)
+    n = min(len(s["t_us"]) for s in seeds)
+    stack = lambda key: np.array([s["fronts"][key][:n] for s in seeds])  # noqa: E731
+    return {"seeds": seeds, "t_us": t_us, "up": up, "down": down,
+            "by_threshold": {th: ensemble(seeds, th) for th in THRESHOLDS},
+            "seed_up": stack("x_sight_up"), "seed_down": stack("x_sight_down"),
+            "x_min": stack("x_min").mean(0), "x_max": stack("x_max").mean(0),
+            "x_p01": stack("x_p01").mean(0), "x_p99": stack("x_p99").mean(0), "n": n,
+            "wall": np.mean([s["wall"] for s in seeds]), "force_share": force_share(seeds)}
+
+
+def plot(sets, exp, ling, path):
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.5), sharey=True)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for ax, which in zip(axes, ("all", "recommended")):
-        for front, marker, fill in (("upstream", "s", "black"), ("downstream", "s", "white")):
+    for ax, which in zip(axes, ("closures", "recommended")):
+        for front, fill in (("upstream", "black"), ("downstream", "white")):
             e = exp[front]
-            ax.errorbar(e[:, 1], e[:, 0], xerr=[e[:, 2], e[:, 3]], fmt=marker, mfc=fill, mec="black", ecolor="black",
+            ax.errorbar(e[:, 1], e[:, 0], xerr=[e[:, 2], e[:, 3]], fmt="s", mfc=fill, mec="black", ecolor="black",
                         ms=5, capsize=2, label=f"experiment, {front} front", zorder=5)
         ax.plot(ling["present_upstream_mm"], ling["t_us"], "k--", lw=1, label="Ling et al. 2012 simulation")
         ax.plot(ling["present_downstream_mm"], ling["t_us"], "k--", lw=1)
-        shown = labels if which == "all" else [recommended]
-        for k, name in enumerate(shown):
-            if name not in runs:
-                continue
-            t, fronts, _ = runs[name]
-            c = colours[k % len(colours)]
-            label = dict((s[0], s[1]) for s in SETTINGS).get(name, RECOMMENDED_LABEL if name == recommended else name)
-            ax.plot(fronts["x_min"], t, "-", color=c, lw=1.5, label=label)
-            ax.plot(fronts["x_max"], t, "-", color=c, lw=1.5)
-            if which == "recommended":
-                ax.plot(fronts["x_p01"], t, ":", color=c, lw=1.5, label="1 % and 99 % of the particles")
-                ax.plot(fronts["x_p99"], t, ":", color=c, lw=1.5)
+        if which == "closures":
+            for k, (name, label, _, _) in enumerate(SETTINGS):
+                if name in sets:
+                    s = sets[name]
+                    ax.plot(s["up"], s["t_us"], "-", color=colours[k % 10], lw=1.5, label=label)
+                    ax.plot(s["down"], s["t_us"], "-", color=colours[k % 10], lw=1.5)
+            ax.set_title(f"line-of-sight fronts of {SEEDS}-seed ensembles, 16 mm channel")
+        else:
+            s = sets.get("recommended")
+            if s is not None:
+                t = s["t_us"][:s["n"]]
+                for key in ("seed_up", "seed_down"):
+                    ax.fill_betweenx(t, s[key].min(0), s[key].max(0), color=colours[0], alpha=0.25, lw=0)
+                ax.plot(s["up"], s["t_us"], "-", color=colours[0], lw=1.8,
+                        label="recommended: ensemble line of sight (band: the seeds' own)")
+                ax.plot(s["down"], s["t_us"], "-", color=colours[0], lw=1.8)
+                ax.plot(s["x_min"], t, ":", color=colours[1], lw=1.2, label="outermost parcels (seed mean)")
+                ax.plot(s["x_max"], t, ":", color=colours[1], lw=1.2)
+                ax.plot(s["x_p01"], t, "-.", color=colours[2], lw=1.0, label="1 % and 99 % points")
+                ax.plot(s["x_p99"], t, "-.", color=colours[2], lw=1.0)
+            for k, name in enumerate(("height_64mm", "polydisperse")):
+                if name in sets:
+                    o = sets[name]
+                    label = dict((x[0], x[1]) for x in STUDIES)[name]
+                    ax.plot(o["up"], o["t_us"], "-", color=colours[3 + k], lw=1.2, label=label)
+                    ax.plot(o["down"], o["t_us"], "-", color=colours[3 + k], lw=1.2)
+            ax.set_title("the recommended physics")
         ax.set_xlabel("front position from the curtain's initial upstream edge (mm)")
-        ax.set_title("the closures compared (16 mm channel)" if which == "all" else RECOMMENDED_LABEL)
         ax.set_xlim(-1, 70)
         ax.set_ylim(0, 720)
         ax.grid(alpha=0.3)
@@ -159,116 +290,90 @@ def plot(runs, exp, ling, labels, recommended, path):
     plt.close(fig)
 
 
-def main(argv):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("runs")
-    p.add_argument("--recommended", default="recommended")
-    p.add_argument("--wall", type=float, default=np.nan, help="wall seconds of the whole regeneration")
-    p.add_argument("--markdown", default=None)
-    p.add_argument("--figures", default=None)
-    p.add_argument("--command", default="bash scripts/validate.sh")
-    p.add_argument("--date", default="")
-    a = p.parse_args(argv)
-    exp, ling = read_experiment(), read_ling()
-    runs = {}
-    for name in [s[0] for s in SETTINGS] + [c[0] for c in CONVERGENCE]:
-        folder = os.path.join(a.runs, name)
-        if os.path.exists(os.path.join(folder, "series", "parcel_fronts.csv")):
-            runs[name] = read_run(folder)
-    if not runs:
-        print(f"validation.py: no run with series/parcel_fronts.csv in {a.runs}", file=sys.stderr)
-        return 1
-    scores = {n: score(r, exp) for n, r in runs.items()}
-    for n, s in scores.items():
-        print(f"{n}: upstream {s['up_in']}/{s['up_n']} and downstream {s['down_in']}/{s['down_n']} within the bars, "
-              f"RMS {s['rms']:.2f} bars, worst {s['worst']:.2f}, wall {runs[n][2]:.1f} s")
-    if a.markdown:
-        figdir = a.figures or os.path.join(os.path.dirname(a.markdown), "validation")
-        os.makedirs(figdir, exist_ok=True)
-        plot(runs, exp, ling, [s[0] for s in SETTINGS], a.recommended, os.path.join(figdir, "curtain_ms166_fronts.png"))
-        write_markdown(a, runs, scores, exp, os.path.relpath(figdir, os.path.dirname(a.markdown)))
-    return 0
-
-
 BEGIN = "<!-- generated by analysis/validation.py: begin -->"
 END = "<!-- generated by analysis/validation.py: end -->"
 
 
-def write_markdown(a, runs, scores, exp, figrel):
-    """Replaces the generated block of the markdown file (between BEGIN and END) with the
-    figure, the tables and the command; the prose around it is the document's own."""
-    rec = a.recommended
+def at_times(t_us, x, exp, front):
+    e = exp[front]
+    return [np.interp(e[int(np.argmin(np.abs(e[:, 0] - t))), 0], t_us, x) for t in TABLE_TIMES_US]
+
+
+def write_markdown(a, sets, scores, exp, figrel, runs_count):
     lines = [BEGIN, ""]
     w = lines.append
-    w(f"Generated by `{a.command}` on {a.date}: {a.wall / 60:.1f} min for the {len(runs)} runs below, one after "
+    w(f"Generated by `{a.command}` on {a.date}: {a.wall / 60:.1f} min for the {runs_count} runs below, one after "
       f"another on 2 threads of a 2-core machine.")
     w("")
     w(f"![fronts]({figrel}/curtain_ms166_fronts.png)")
     w("")
-    w("The closures and forces compared, each on the same 16 mm channel (646 parcels). Score: of the measured points, "
-      "those the run's front meets within the error bar (upstream, downstream), and the RMS of |ours − measured| / bar "
-      "over all of them; wall: the whole run to 700 µs.")
+    w(f"**The closures**, each as an ensemble of {SEEDS} bead samples (seeds) on the 16 mm channel (646 parcels a "
+      "run). Fronts: the line of sight of the ensemble's mean optical depth. Score: of the measured points, those "
+      "within the error bar (upstream, downstream), and the RMS of |ours − measured| / bar over all of them. "
+      "Added mass / pressure: the added-mass force summed over the particles and the outputs after 20 µs (the "
+      "shock has crossed the curtain by 3.5 µs) against the pressure-gradient force summed likewise, and in "
+      "brackets the largest ratio at one output. Wall: one run to 700 µs.")
     w("")
-    w("| setting | what it switches | upstream in bars | downstream in bars | RMS (bars) | worst (bars) | wall |")
-    w("|---|---|---|---|---|---|---|")
-    for name, label, what in SETTINGS:
-        if name not in scores:
+    w("| setting | what it switches | upstream in bars | downstream in bars | RMS (bars) | worst (bars) | "
+      "added mass / pressure | wall |")
+    w("|---|---|---|---|---|---|---|---|")
+    for name, label, what, _ in SETTINGS:
+        if name not in sets:
             continue
-        s = scores[name]
-        w(f"| {label}{' (**recommended closures**)' if name == 'paper_added_mass' else ''} | {what} | {s['up_in']}/{s['up_n']} | "
-          f"{s['down_in']}/{s['down_n']} | {s['rms']:.2f} | {s['worst']:.2f} | {runs[name][2]:.1f} s |")
+        s, sc = sets[name], scores[name]
+        total, worst = s["force_share"]
+        share = "—" if np.isnan(total) else f"{total:.2f} ({worst:.2f})"
+        w(f"| {label} | {what} | {sc['up_in']}/{sc['up_n']} | {sc['down_in']}/{sc['down_n']} | {sc['rms']:.2f} | "
+          f"{sc['worst']:.2f} | {share} | {s['wall']:.1f} s |")
     w("")
-    ling = read_ling()
-    t_rec, fr_rec, _ = runs[rec]
-    for front, col, key in (("upstream", "present_upstream_mm", "x_min"), ("downstream", "present_downstream_mm", "x_max")):
-        ok = np.isfinite(ling[col])
-        diff = np.interp(ling["t_us"][ok], t_rec, fr_rec[key]) - ling[col][ok]
-        w(f"Against Ling et al.'s own simulation of the experiment (their full model, digitised curve), the recommended "
-          f"setting's {front} front differs by {np.sqrt(np.mean(diff ** 2)):.2f} mm RMS and {np.abs(diff).max():.2f} mm "
-          f"at most over their {ok.sum()} points.")
-        w("")
-    w(f"The recommended run ({RECOMMENDED_LABEL}): upstream front within the bars at "
-      f"{scores[rec]['up_in']}/{scores[rec]['up_n']} measured times, downstream at {scores[rec]['down_in']}/"
-      f"{scores[rec]['down_n']}, RMS {scores[rec]['rms']:.2f} bars, worst {scores[rec]['worst']:.2f}; {runs[rec][2]:.0f} s.")
+    w("**The recommended physics** on other bead samples and beads (line-of-sight fronts of each ensemble):")
     w("")
-    w("Fronts at six times (mm from the initial upstream edge; measured with the bar's reach below/above, "
-      "or ±< the marker where the bar hides behind it):")
-    w("")
-    shown = [(rec, "recommended (2,588 parcels)")] + [(name, label) for name, label, _ in SETTINGS if name in runs]
-    w("| t (µs) | measured upstream | measured downstream | " + " | ".join(f"{l}: up / down" for _, l in shown) + " |")
-    w("|---" * (3 + len(shown)) + "|")
-    for t in TABLE_TIMES_US:
-        row = []
-        for front in ("upstream", "downstream"):
-            e = exp[front]
-            k = int(np.argmin(np.abs(e[:, 0] - t)))
-            bar = f"±<{e[k, 2]:.2f}" if e[k, 4] else f"−{e[k, 2]:.2f}/+{e[k, 3]:.2f}"
-            row.append(f"{e[k, 1]:.2f} ({bar})")
-        cells = []
-        for name, _ in shown:
-            tt, fr, _ = runs[name]
-            eu, ed = exp["upstream"], exp["downstream"]
-            tu = eu[int(np.argmin(np.abs(eu[:, 0] - t))), 0]
-            td = ed[int(np.argmin(np.abs(ed[:, 0] - t))), 0]
-            cells.append(f"{np.interp(tu, tt, fr['x_min']):.2f} / {np.interp(td, tt, fr['x_max']):.2f}")
-        w(f"| {t} | {row[0]} | {row[1]} | " + " | ".join(cells) + " |")
-    w("")
-    w("The recommended closures (Sangani + added mass) at other resolutions: cells, and the channel height and with "
-      "it the number of parcels that sample the curtain (the outermost parcels are extremes of that sample).")
-    w("")
-    w("| run | upstream in bars | downstream in bars | RMS (bars) | downstream front at 361 µs | its 99 % point | wall |")
+    w("| run | seeds | upstream in bars | downstream in bars | RMS (bars) | downstream front at 361 µs: line of "
+      "sight / outermost / 99 % | wall |")
     w("|---|---|---|---|---|---|---|")
     ed = exp["downstream"]
     k360 = int(np.argmin(np.abs(ed[:, 0] - 360)))
-    for name, label in CONVERGENCE:
-        key = name
-        if key not in runs:
+    t360 = ed[k360, 0]
+    rows = [("recommended", "16 mm channel (646 parcels a run)", SEEDS)] + [(n, l, k) for n, l, k, _ in STUDIES]
+    for name, label, _ in rows:
+        if name not in sets:
             continue
-        s = scores[key]
-        tt, fr, wall = runs[key]
-        w(f"| {label} | {s['up_in']}/{s['up_n']} | {s['down_in']}/{s['down_n']} | {s['rms']:.2f} | "
-          f"{np.interp(ed[k360, 0], tt, fr['x_max']):.2f} mm (measured {ed[k360, 1]:.2f}) | "
-          f"{np.interp(ed[k360, 0], tt, fr['x_p99']):.2f} mm | {wall:.1f} s |")
+        s, sc = sets[name], scores[name]
+        t = s["t_us"][:s["n"]]
+        w(f"| {label} | {len(s['seeds'])} | {sc['up_in']}/{sc['up_n']} | {sc['down_in']}/{sc['down_n']} | "
+          f"{sc['rms']:.2f} | {np.interp(t360, s['t_us'], s['down']):.2f} / {np.interp(t360, t, s['x_max']):.2f} / "
+          f"{np.interp(t360, t, s['x_p99']):.2f} mm (measured {ed[k360, 1]:.2f}) | {s['wall']:.1f} s |")
+    w("")
+    if "recommended" in sets:
+        s = sets["recommended"]
+        w("The edge's threshold: the recommended ensemble's fronts at 690 µs for an optical depth of "
+          + ", ".join(f"{th:g}" for th in THRESHOLDS) + " (1 is the scene's):")
+        w("")
+        w("| optical depth | upstream at 690 µs | downstream at 690 µs | upstream in bars | downstream in bars |")
+        w("|---|---|---|---|---|")
+        for th in THRESHOLDS:
+            t_us, up, down = s["by_threshold"][th]
+            sc = score(t_us, up, down, exp)
+            w(f"| {th:g} | {np.interp(690, t_us, up):.2f} mm | {np.interp(690, t_us, down):.2f} mm | "
+              f"{sc['up_in']}/{sc['up_n']} | {sc['down_in']}/{sc['down_n']} |")
+        w("")
+    shown = [(n, l) for n, l, _, _ in SETTINGS if n in sets]
+    w("Fronts at six times (mm from the initial upstream edge; measured with the bar's reach below/above, or ±< the "
+      "marker where the bar hides behind it):")
+    w("")
+    w("| t (µs) | measured upstream | measured downstream | " + " | ".join(f"{l}: up / down" for _, l in shown) + " |")
+    w("|---" * (3 + len(shown)) + "|")
+    cols = {n: (at_times(sets[n]["t_us"], sets[n]["up"], exp, "upstream"),
+                at_times(sets[n]["t_us"], sets[n]["down"], exp, "downstream")) for n, _ in shown}
+    for k, t in enumerate(TABLE_TIMES_US):
+        row = []
+        for front in ("upstream", "downstream"):
+            e = exp[front]
+            i = int(np.argmin(np.abs(e[:, 0] - t)))
+            bar = f"±<{e[i, 2]:.2f}" if e[i, 4] else f"−{e[i, 2]:.2f}/+{e[i, 3]:.2f}"
+            row.append(f"{e[i, 1]:.2f} ({bar})")
+        w(f"| {t} | {row[0]} | {row[1]} | " + " | ".join(f"{cols[n][0][k]:.2f} / {cols[n][1][k]:.2f}"
+                                                        for n, _ in shown) + " |")
     w("")
     w(END)
     block = "\n".join(lines)
@@ -279,6 +384,44 @@ def write_markdown(a, runs, scores, exp, figrel):
     tail = rest.split(END, 1)[1]
     with open(a.markdown, "w") as f:
         f.write(head + block + tail)
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("runs", nargs="?")
+    p.add_argument("--list", action="store_true", help="print the runs to make and exit")
+    p.add_argument("--wall", type=float, default=np.nan, help="wall seconds of the whole regeneration")
+    p.add_argument("--markdown", default=None)
+    p.add_argument("--figures", default=None)
+    p.add_argument("--command", default="bash scripts/validate.sh")
+    p.add_argument("--date", default="")
+    a = p.parse_args(argv)
+    if a.list:
+        for name, seeds, overrides in runs_to_make():
+            print("\t".join([name, str(seeds)] + overrides))
+        return 0
+    if not a.runs:
+        p.error("RUNS_DIR is needed (or --list)")
+    exp, ling = read_experiment(), read_ling()
+    names = [s[0] for s in SETTINGS] + [s[0] for s in STUDIES]
+    sets = {n: s for n in names if (s := summarise(os.path.join(a.runs, n))) is not None}
+    if not sets:
+        print(f"validation.py: no ensemble with series/line_of_sight.csv in {a.runs}", file=sys.stderr)
+        return 1
+    scores = {n: score(s["t_us"], s["up"], s["down"], exp) for n, s in sets.items()}
+    for n, sc in scores.items():
+        s = sets[n]
+        print(f"{n} ({len(s['seeds'])} seeds): upstream {sc['up_in']}/{sc['up_n']} and downstream "
+              f"{sc['down_in']}/{sc['down_n']} within the bars, RMS {sc['rms']:.2f} bars, worst {sc['worst']:.2f}; "
+              f"added mass / pressure {s['force_share'][0]:.3f} (at one output at most {s['force_share'][1]:.3f}); "
+              f"wall {s['wall']:.1f} s a run")
+    if a.markdown:
+        figdir = a.figures or os.path.join(os.path.dirname(a.markdown), "validation")
+        os.makedirs(figdir, exist_ok=True)
+        plot(sets, exp, ling, os.path.join(figdir, "curtain_ms166_fronts.png"))
+        write_markdown(a, sets, scores, exp, os.path.relpath(figdir, os.path.dirname(a.markdown)),
+                       sum(len(s["seeds"]) for s in sets.values()))
+    return 0
 
 
 if __name__ == "__main__":

@@ -1,8 +1,9 @@
 // The streamwise fronts of the parcels as series (a particle curtain's spreading, Ling et al.
 // 2012 Fig. 14): parcel_fronts.csv with time_s, the outermost parcels x_min_m and x_max_m, the
 // 1 % and 99 % points x_p01_m and x_p99_m, and the edges a line of sight through the channel
-// sees, x_sight_up_m and x_sight_down_m (parcel_fronts.hpp); and parcel_force_totals.csv, the
-// x force of each part summed over every real particle (N per metre of depth), which says what
+// sees, x_sight_up_m and x_sight_down_m (parcel_fronts.hpp); line_of_sight.csv, the optical depth
+// of every non-empty bin (an ensemble of runs averages it); and parcel_force_totals.csv, the x
+// force of each part summed over every real particle (N per metre of depth), which says what
 // moves the cloud.
 #include <memory>
 #include <utility>
@@ -47,7 +48,8 @@ class FrontsObserver final : public Observer {
                                  {"x_max", "m"},
                                  {"x_sight_up", "m"},
                                  {"x_sight_down", "m"}}),
-        totals_(totals_table(parts_)) {}
+        totals_(totals_table(parts_)),
+        profile_table_("line_of_sight", {{"time", "s"}, {"x", "m"}, {"optical_depth", "1"}}) {}
 
   unsigned output_reads() const override { return kReadsParcels; }
   void on_output(const StateView& view) override {
@@ -55,7 +57,12 @@ class FrontsObserver final : public Observer {
     if (sampled_ && view.time == last_time_) return;  // on_finish right after an output
     const ParcelSystem& p = *view.parcels;
     const ParcelFronts f = parcel_fronts(p.x, p.n_real, 0.01, order_);
-    const SightEdges e = line_of_sight_edges(p.x, p.n_real, p.real_diameter, sight_, scratch_);
+    const SightEdges e = line_of_sight_edges(p.x, p.n_real, p.real_diameter, sight_, profile_);
+    for (std::size_t b = 0; b < profile_.tau.size(); ++b) {
+      if (profile_.tau[b] <= 0.0) continue;
+      const double centre = (profile_.first + static_cast<double>(b) + 0.5) * sight_.bin;
+      profile_table_.append_row(std::vector{view.time, centre, profile_.tau[b]});
+    }
     table_.append_row(
         std::vector{view.time, f.x_min, f.x_low, f.x_high, f.x_max, e.upstream, e.downstream});
     std::vector<double> row{view.time};
@@ -73,29 +80,31 @@ class FrontsObserver final : public Observer {
     if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
     sink_->write(table_);
     sink_->write(totals_);
+    sink_->write(profile_table_);
   }
 
   std::string state_key() const override { return "parcel_fronts"; }
   void save_state(Snapshot& s, const std::string& prefix) const override {
-    save_series_state({&table_, &totals_}, last_time_, sampled_, s, prefix);
+    save_series_state({&table_, &totals_, &profile_table_}, last_time_, sampled_, s, prefix);
   }
   void restore_state(const Snapshot& s, const std::string& prefix) override {
-    sampled_ = restore_series_state({&table_, &totals_}, last_time_, s, prefix);
+    sampled_ = restore_series_state({&table_, &totals_, &profile_table_}, last_time_, s, prefix);
   }
   void on_resume(const StateView& view, const std::string&) override {
     if (!sampled_) return;
     if (!sink_) sink_ = std::make_unique<SeriesSink>(series_sink_of(view));
     sink_->write(table_);
     sink_->write(totals_);
+    sink_->write(profile_table_);
   }
 
  private:
   LineOfSight sight_;
   std::vector<std::pair<ForcePart, std::string>> parts_;
-  SeriesTable table_, totals_;
+  SeriesTable table_, totals_, profile_table_;
   std::unique_ptr<SeriesSink> sink_;
   std::vector<std::size_t> order_;
-  std::vector<double> scratch_;
+  SightProfile profile_;
   bool sampled_ = false;
   double last_time_ = 0.0;
 };

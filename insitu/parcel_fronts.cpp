@@ -44,44 +44,57 @@ ParcelFronts parcel_fronts(std::span<const double> x, std::span<const double> we
   return f;
 }
 
-SightEdges line_of_sight_edges(std::span<const double> x, std::span<const double> n_real,
-                               std::span<const double> diameter, const LineOfSight& sight,
-                               std::vector<double>& tau) {
+void line_of_sight_profile(std::span<const double> x, std::span<const double> n_real,
+                           std::span<const double> diameter, const LineOfSight& sight,
+                           SightProfile& profile) {
   const std::size_t n = x.size();
   if (n_real.size() != n || diameter.size() != n)
-    throw std::invalid_argument("line_of_sight_edges: columns of different counts");
+    throw std::invalid_argument("line_of_sight_profile: columns of different counts");
   if (!(sight.bin > 0.0 && sight.height > 0.0 && sight.depth > 0.0))
-    throw std::invalid_argument("line_of_sight_edges: bin, height and depth must be > 0");
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (n == 0) return {nan, nan};
-  // Bins on a fixed grid of x (multiples of the bin width), so parcels in any order or number
-  // fall into the same bins.
+    throw std::invalid_argument("line_of_sight_profile: bin, height and depth must be > 0");
+  profile.tau.clear();
+  if (n == 0) return;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  const double first = std::floor(*lo / sight.bin);
-  const std::size_t bins = static_cast<std::size_t>(std::floor(*hi / sight.bin) - first) + 1;
-  tau.assign(bins, 0.0);
+  profile.first = std::floor(*lo / sight.bin);
+  const auto bins = static_cast<std::size_t>(std::floor(*hi / sight.bin) - profile.first) + 1;
+  profile.tau.assign(bins, 0.0);
   const double per_area = sight.depth / (sight.bin * sight.height);
   for (std::size_t k = 0; k < n; ++k) {
-    const auto b = static_cast<std::size_t>(std::floor(x[k] / sight.bin) - first);
-    tau[b] += n_real[k] * 0.25 * std::numbers::pi * diameter[k] * diameter[k] * per_area;
+    const auto b = static_cast<std::size_t>(std::floor(x[k] / sight.bin) - profile.first);
+    profile.tau[b] += n_real[k] * 0.25 * std::numbers::pi * diameter[k] * diameter[k] * per_area;
   }
+}
+
+SightEdges sight_edges(const SightProfile& profile, const LineOfSight& sight) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double>& tau = profile.tau;
+  const std::size_t bins = tau.size();
   const double t = sight.optical_depth;
-  const auto centre = [&](double b) { return (first + b + 0.5) * sight.bin; };
+  const auto centre = [&](std::size_t b) {
+    return (profile.first + static_cast<double>(b) + 0.5) * sight.bin;
+  };
   SightEdges e{nan, nan};
   // Upstream: the first bin reaching the threshold, the crossing between it and the bin before.
   for (std::size_t b = 0; b < bins; ++b) {
     if (tau[b] < t) continue;
     const double before = b > 0 ? tau[b - 1] : 0.0;
-    e.upstream = centre(static_cast<double>(b)) - sight.bin * (tau[b] - t) / (tau[b] - before);
+    e.upstream = centre(b) - sight.bin * (tau[b] - t) / (tau[b] - before);
     break;
   }
   for (std::size_t b = bins; b-- > 0;) {
     if (tau[b] < t) continue;
     const double after = b + 1 < bins ? tau[b + 1] : 0.0;
-    e.downstream = centre(static_cast<double>(b)) + sight.bin * (tau[b] - t) / (tau[b] - after);
+    e.downstream = centre(b) + sight.bin * (tau[b] - t) / (tau[b] - after);
     break;
   }
   return e;
+}
+
+SightEdges line_of_sight_edges(std::span<const double> x, std::span<const double> n_real,
+                               std::span<const double> diameter, const LineOfSight& sight,
+                               SightProfile& profile) {
+  line_of_sight_profile(x, n_real, diameter, sight, profile);
+  return sight_edges(profile, sight);
 }
 
 }  // namespace dustlift

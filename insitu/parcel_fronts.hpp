@@ -34,11 +34,23 @@ struct SightEdges {
   /// between bin centres); NaN where no bin reaches it.
   double upstream = 0.0, downstream = 0.0;
 };
-/// The edges of parcels at x (m), each with `n_real` real particles per metre of depth of
-/// diameter `diameter` (m). `tau` is scratch (per bin). Throws std::invalid_argument for
-/// mismatched sizes or a non-positive bin, height or depth.
+/// The optical depth per bin: bin k spans [(first + k) bin, (first + k + 1) bin) on a fixed
+/// grid of x (multiples of the bin width), so runs and parcel orders share their bins.
+struct SightProfile {
+  double first = 0.0;        ///< index of the first bin (a whole number)
+  std::vector<double> tau;   ///< optical depth per bin
+};
+/// The profile of parcels at x (m), each with `n_real` real particles per metre of depth of
+/// diameter `diameter` (m). Throws std::invalid_argument for mismatched sizes or a
+/// non-positive bin, height or depth.
+void line_of_sight_profile(std::span<const double> x, std::span<const double> n_real,
+                           std::span<const double> diameter, const LineOfSight& sight,
+                           SightProfile& profile);
+/// Where a profile crosses the threshold, outermost upstream and downstream.
+SightEdges sight_edges(const SightProfile& profile, const LineOfSight& sight);
+/// Both in one.
 SightEdges line_of_sight_edges(std::span<const double> x, std::span<const double> n_real,
                                std::span<const double> diameter, const LineOfSight& sight,
-                               std::vector<double>& tau);
+                               SightProfile& profile);
 
 }  // namespace dustlift

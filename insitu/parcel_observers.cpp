@@ -15,7 +15,7 @@
 #include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
 #include "solver/core/derivatives.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 namespace {

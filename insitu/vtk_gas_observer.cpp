@@ -11,7 +11,7 @@
 #include "insitu/view_fields.hpp"
 #include "insitu/vtk_pieces.hpp"
 #include "insitu/vtk_writers.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 namespace {

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "bench/dem_reference_layer.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/parallel/parcel_slabs.hpp"
 
 using namespace dustlift;

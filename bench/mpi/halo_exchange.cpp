@@ -10,7 +10,7 @@
 
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/parallel/slab_halo.hpp"
 

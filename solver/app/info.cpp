@@ -9,7 +9,7 @@
 #include "insitu/outputs.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/scene/resource_limits.hpp"
 
 namespace dustlift {

@@ -29,7 +29,7 @@
 #include "solver/core/errors.hpp"
 #include "solver/core/wait_policy.hpp"
 #include "solver/dem/layer_generator.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/time_targets.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/observer.hpp"
 #include "solver/sim/snapshot.hpp"

@@ -32,6 +32,10 @@ struct CouplingConfig {
       0.0;  ///< Re_w below which Stokes' torque is used (0: fit only, as the paper)
   bool heat_transfer = true;  ///< Ranz-Marshall (eqs. 7-10)
   InterpolationRule interpolation = InterpolationRule::Triangle;
+  /// The pressure-gradient force and the added mass's fluid part from the undisturbed flow
+  /// averaged over the particle's volume (their Faxen form), not its centre value: for
+  /// particles larger than the cells.
+  bool finite_size = false;
   /// Side of the square over which a parcel deposits (Table 2 "domain of influence
   /// diameter", 100 um); 0 deposits into the cell holding the centre (eq. 12 literally).
   double influence_width = 100e-6;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "solver/gas/gas_halo.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/coupling/gas_halo.hpp"
+#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 

@@ -20,8 +20,13 @@ GasParticleCoupling::GasParticleCoupling(const Grid2D& grid, const CouplingConfi
       effects_(config),
       props_(std::make_unique<GasProperties>(gas)),
       stencils_(config.influence_width) {
-  for (const SizeClass& c : dem.size_classes)
+  largest_diameter_ = dem.particle_diameter;
+  for (const PlacedParcel& p : dem.layer_parcels)
+    largest_diameter_ = std::max(largest_diameter_, p.particle_diameter);
+  for (const SizeClass& c : dem.size_classes) {
     class_volume_.push_back(std::numbers::pi / 6.0 * std::pow(c.diameter, 3));
+    largest_diameter_ = std::max(largest_diameter_, c.diameter);
+  }
   make_fields();
 }
 
@@ -122,28 +127,30 @@ void GasParticleCoupling::row_range(const ParcelSystem& parcels, int& j0, int& j
 }
 
 void GasParticleCoupling::initialize(GasSolver& gas, ParcelSystem& parcels) {
-  auto attach = [&](const char* name, const char* unit) {
-    return parcels.attach_column({name, unit, false, false});
-  };
   // Columns a later step reads for parcels it does not sample again (resting parcels: the
-  // implicit exchange's sums, the band filters' rotations, the rest counts) go into
+  // implicit exchange's sums, the band filters' rotations, the rest counts) are carried into
   // checkpoints, so that a restart continues bitwise also when skipping within
   // run.rest_tolerance.
-  auto carried = [&](const char* name, const char* unit) {
-    return parcels.attach_column({name, unit, true, false});
+  struct Spec {
+    ParcelColumn Columns::*column;
+    const char *name, *unit;
+    bool carried;
   };
-  col_.gas_u = attach("gas_u", "m/s");
-  col_.gas_v = attach("gas_v", "m/s");
-  col_.gas_rotation = carried("gas_rotation", "rad/s");
-  col_.gas_T = attach("gas_temperature", "K");
-  col_.gas_p = carried("gas_pressure", "Pa");
-  col_.rest_steps = carried("rest_steps", "1");
-  col_.stepped = attach("stepped", "1");
-  col_.impulse_x = attach("exchange_impulse_x", "N s");
-  col_.impulse_y = attach("exchange_impulse_y", "N s");
-  col_.work = attach("exchange_work", "J");
-  col_.heat = attach("exchange_heat", "J");
-  col_.relative_rotation = carried("relative_rotation", "rad/s");
+  static constexpr Spec kColumns[] = {
+      {&Columns::gas_u, "gas_u", "m/s", false},
+      {&Columns::gas_v, "gas_v", "m/s", false},
+      {&Columns::gas_rotation, "gas_rotation", "rad/s", true},
+      {&Columns::gas_T, "gas_temperature", "K", false},
+      {&Columns::gas_p, "gas_pressure", "Pa", true},
+      {&Columns::rest_steps, "rest_steps", "1", true},
+      {&Columns::stepped, "stepped", "1", false},
+      {&Columns::impulse_x, "exchange_impulse_x", "N s", false},
+      {&Columns::impulse_y, "exchange_impulse_y", "N s", false},
+      {&Columns::work, "exchange_work", "J", false},
+      {&Columns::heat, "exchange_heat", "J", false},
+      {&Columns::relative_rotation, "relative_rotation", "rad/s", true}};
+  for (const Spec& s : kColumns)
+    col_.*s.column = parcels.attach_column({s.name, s.unit, s.carried, false});
   effects_.attach(parcels);
   stiff_sampled_.clear();
   for (const StiffCoefficient& c : effects_.stiff_momentum()) stiff_sampled_.push_back(c.sampled);

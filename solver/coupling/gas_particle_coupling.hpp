@@ -34,7 +34,7 @@
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_config.hpp"
-#include "solver/gas/gas_halo.hpp"
+#include "solver/coupling/gas_halo.hpp"
 #include "solver/gas/gas_solver.hpp"
 
 namespace dustlift {
@@ -149,6 +149,10 @@ class GasParticleCoupling {
   /// The vorticity and pressure gradient (what the models read) at the cells the sampled
   /// parcels' quads can read, in rows [j0, j1) and columns [0, i1).
   void derivatives_near_parcels(const GasPrimitives& gas, int j0, int j1, int i1);
+  /// coupling.finite_size: the batch's samples of grad p and of the gas momentum and its
+  /// gradient replaced by their averages over each particle's sphere (sphere_average.hpp).
+  void average_over_particles(const double* x, const double* y, const double* d, std::size_t n,
+                              ModelInput* in) const;
   /// rho u and rho v in the interior cells of rows [j0, j1), columns [0, i1).
   void momentum_fields(const GasPrimitives& gas, int j0, int j1, int i1);
   /// Every derived field the effects read in cells [i0, i1) of row j.
@@ -187,7 +191,8 @@ class GasParticleCoupling {
   std::vector<double> class_volume_;
   CouplingEffects effects_;
   std::vector<ParcelColumn> stiff_sampled_;
-  std::vector<Field2D*> derived_;  ///< derived_fields(), kept (no allocation per step)  ///< the sampled stiff coefficients (rank copies')
+  std::vector<Field2D*> derived_;  ///< derived_fields(), kept (no allocation per step)
+  double largest_diameter_ = 0.0;  ///< m, of the real particles (the finite-size averages' reach)  ///< the sampled stiff coefficients (rank copies')
   std::unique_ptr<GasProperties> props_;
   Columns col_;
 

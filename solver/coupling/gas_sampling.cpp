@@ -6,10 +6,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 #include "solver/core/derivatives.hpp"
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/coupling/gas_properties.hpp"
+#include "solver/coupling/sphere_average.hpp"
 
 namespace dustlift {
 
@@ -44,7 +46,8 @@ void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j
   i1 = std::min(i1, nx);
   if (j1 <= j0 || i1 <= 0) return;
   // The momentum's derivatives read it one cell around the cells they are made in.
-  if (r.momentum_gradient) momentum_fields(g, std::max(j0 - 1, 0), std::min(j1 + 1, ny), std::min(i1 + 1, nx));
+  if (r.momentum_gradient)
+    momentum_fields(g, std::max(j0 - 1, 0), std::min(j1 + 1, ny), std::min(i1 + 1, nx));
   // A parcel's interpolation quad lies within one cell of the cell holding its centre, and
   // that cell has alpha_p > 0 (the last deposit was made at the current positions). So the
   // quads read only cells within one cell of a cell with alpha_p > 0: the derivatives are
@@ -77,6 +80,50 @@ void GasParticleCoupling::derivatives_near_parcels(const GasPrimitives& g, int j
   }
 }
 
+void GasParticleCoupling::average_over_particles(const double* x, const double* y, const double* d,
+                                                 std::size_t n, ModelInput* in) const {
+  const GasReads& reads = effects_.reads();
+  constexpr std::size_t kBatch = 64;
+  InterpolationBatch<kBatch> quads =
+      slab_ ? InterpolationBatch<kBatch>(*slab_->whole, grid_, slab_->first_column)
+            : InterpolationBatch<kBatch>(grid_);
+  struct Averaged {
+    const Field2D* field;
+    double GasSample::*member;
+  };
+  std::array<Averaged, 8> all{};
+  std::size_t count = 0;
+  if (reads.pressure_gradient) {
+    all[count++] = {&dpdx_, &GasSample::dpdx};
+    all[count++] = {&dpdy_, &GasSample::dpdy};
+  }
+  if (reads.momentum_gradient) {
+    all[count++] = {&rho_u_, &GasSample::rho_u};
+    all[count++] = {&rho_v_, &GasSample::rho_v};
+    all[count++] = {&dx_rho_u_, &GasSample::dx_rho_u};
+    all[count++] = {&dy_rho_u_, &GasSample::dy_rho_u};
+    all[count++] = {&dx_rho_v_, &GasSample::dx_rho_v};
+    all[count++] = {&dy_rho_v_, &GasSample::dy_rho_v};
+  }
+  const std::span<const Averaged> fields(all.data(), count);
+  for (std::size_t q = 0; q < n; ++q)
+    for (const Averaged& f : fields) in[q].gas.*f.member = 0.0;
+  std::array<double, kBatch> px{}, py{}, value{};
+  for (const SpherePoint& s : sphere_points()) {
+    for (std::size_t q = 0; q < n; ++q) {
+      const double a = 0.5 * d[q];
+      px[q] = x[q] + s.xi * a;
+      py[q] = y[q] + s.eta * a;
+    }
+    quads.clear();
+    quads.push_points(px.data(), py.data(), n, cfg_.interpolation);
+    for (const Averaged& f : fields) {
+      quads.apply(*f.field, value.data());
+      for (std::size_t q = 0; q < n; ++q) in[q].gas.*f.member += s.weight * value[q];
+    }
+  }
+}
+
 void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   const std::size_t active = stepped_.count;
   const GasPrimitives g = gas.primitives();
@@ -96,7 +143,16 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   const GasReads& reads = effects_.reads();
   const bool vort = reads.rotation, pressure = reads.pressure_gradient,
              momentum = reads.momentum_gradient;
-  if (!slab_) {
+  if (!slab_ && cfg_.finite_size) {
+    // Averages over the particles read the fields across each sphere: whole rows, widened by
+    // the largest radius.
+    const double reach = 0.5 * largest_diameter_;
+    j0 = std::max(0, grid_.y().locate(grid_.y().center(j0) - reach) - 1);
+    j1 = std::min(grid_.ny(), grid_.y().locate(grid_.y().center(std::max(j1 - 1, 0)) + reach) + 2);
+    if (momentum) momentum_fields(g, j0, j1, grid_.nx());
+    for (int j = j0; j < j1; ++j) derived_segment(g, j, 0, grid_.nx());
+    for (Field2D* f : derived_) copy_edge_to_ghosts(grid_, *f, j0, j1);
+  } else if (!slab_) {
     derivatives_near_parcels(g, j0, j1, i1);
     for (Field2D* f : derived_) copy_edge_to_ghosts(grid_, *f, j0, j1);
   } else {
@@ -104,7 +160,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     // ghost columns from the neighbours. Each cell's value is the one the whole grid gives.
     const int nx = grid_.nx();
     if (momentum) momentum_fields(g, 0, grid_.ny(), nx);
-    // clang-format off
+      // clang-format off
 #pragma omp parallel for schedule(static) if (static_cast<std::size_t>(grid_.ny()) * nx >= kParallelMinimum)
     // clang-format on
     for (int j = 0; j < grid_.ny(); ++j) derived_segment(g, j, 0, nx);
@@ -204,11 +260,15 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       s.dy_rho_u = value[kDyRhoU][q];
       s.dx_rho_v = value[kDxRhoV][q];
       s.dy_rho_v = value[kDyRhoV][q];
+      s.rho_u = s.rho * s.u;
+      s.rho_v = s.rho * s.v;
       in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d, 1.0 / ps.inv_mass_real[k]};
       const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
       in[q].slip = std::sqrt(sx * sx + sy * sy);
       in[q].re = s.rho * in[q].slip * d / s.mu;
     }
+    if (cfg_.finite_size && (pressure || momentum))
+      average_over_particles(x_sampled + k0, ps.y.data() + k0, real_d + k0, count, in.data());
     effects_.coefficients(in.data(), k0, count, ps, step);
     for (std::size_t q = 0; q < count; ++q) {
       const std::size_t k = k0 + q;

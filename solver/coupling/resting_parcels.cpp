@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "solver/coupling/coupling_slab.hpp"
-#include "solver/gas/gas_halo.hpp"
+#include "solver/coupling/gas_halo.hpp"
 
 namespace dustlift {
 

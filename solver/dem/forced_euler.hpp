@@ -58,6 +58,13 @@ struct StoresForce {
   }
 };
 
+/// A functor whose part is one value per parcel (a torque, a heat flow) stored in a column.
+struct StoresValue {
+  using Part = double;
+  double* out;
+  void store(std::size_t i, double v) const { out[i] = v; }
+};
+
 /// The parcel columns a forced sub-step reads and writes (ParcelSystem::euler_arrays), and
 /// the exchange sums of the forcing (null when it exchanges nothing).
 struct EulerArrays {

@@ -14,7 +14,7 @@
 
 #include "solver/dem/parcel_ranks.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "solver/gas/gas_halo.hpp"
+#include "solver/coupling/gas_halo.hpp"
 #include "solver/gas/ghost_filler.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 
 namespace dustlift {

@@ -1,4 +1,4 @@
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 
 // Without MPI the world is this one process (the MPI build compiles mpi/world_mpi.cpp instead).
 #ifndef DUSTLIFT_HAS_MPI

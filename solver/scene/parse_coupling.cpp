@@ -14,7 +14,8 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
                  "volume_fraction_cap", "magnus", "magnus_coefficient", "magnus_convention",
                  "lun_liu", "pressure_force", "added_mass", "added_mass_volume_fraction",
                  "added_mass_fluid_acceleration", "rotation_torque", "torque_stokes_below",
-                 "heat_transfer", "interpolation", "influence_width", "max_volume_fraction"});
+                 "heat_transfer", "interpolation", "influence_width", "max_volume_fraction",
+                 "finite_size"});
   if (!dem.enabled) {
     if (t.present() && !dem.switched_off)
       t.fail("two_way", "a [coupling] section needs [particles]");
@@ -54,12 +55,16 @@ void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem,
   c.torque_stokes_below =
       t.number("torque_stokes_below", c.torque_stokes_below, Range::non_negative());
   c.heat_transfer = t.boolean("heat_transfer", c.heat_transfer);
+  c.finite_size = t.boolean("finite_size", c.finite_size);
   const auto rule = t.choice("interpolation", "triangle", {"triangle", "bilinear"});
   c.interpolation = rule == "triangle" ? InterpolationRule::Triangle : InterpolationRule::Bilinear;
   const double min_cell = min_cell_width(grid);
   // Checked before influence_width, whose default is the parcel diameter: the message then
   // names the key the user set. Relative tolerance: a 2 mm parcel fits a 2.0 m / 1000 cell.
-  if (dem.parcel_diameter > min_cell * (1.0 + kCellTolerance)) {
+  // A particle larger than the cells is for a one-way run that averages the undisturbed flow
+  // over it (finite_size): the gas does not feel what it would deposit.
+  const bool resolved_sphere = c.finite_size && !c.two_way;
+  if (dem.parcel_diameter > min_cell * (1.0 + kCellTolerance) && !resolved_sphere) {
     throw SceneError(t.file() + ": key 'particles.parcel_diameter': parcels of " +
                      fmt::format("{:.9g}", dem.parcel_diameter) +
                      " m are larger than the smallest grid cell (" +

@@ -12,9 +12,9 @@
 
 #include "solver/dem/class_columns.hpp"
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/laws/contact.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/size_distribution.hpp"
+#include "solver/laws/contact.hpp"
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
@@ -66,21 +66,22 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
     // The linear law's e_n = exp(-pi zeta / sqrt(1 - zeta^2)) inverted for the dashpot.
     if (t.has("damping")) t.fail("restitution", "give either damping or restitution, not both");
     c.restitution = t.required_number("restitution", Range::open_closed(0.0, 1.0));
+    if (KeyFact* f = t.recorded_fact("restitution")) f->fallback = "optional (instead of damping)";
     c.damping = damping_of(c.restitution, t.full_key("restitution"));
   } else if (from != nullptr && !t.has("damping") && fallback.restitution > 0.0) {
     // The walls take the particles' restitution (the same material), each parcel's dashpot
     // following its own real mass.
-    c.restitution = t.derived_number("restitution", fallback.restitution,
-                                     std::string(from) + ".restitution",
-                                     Range::open_closed(0.0, 1.0));
+    c.restitution =
+        t.derived_number("restitution", fallback.restitution, std::string(from) + ".restitution",
+                         Range::open_closed(0.0, 1.0));
     c.damping = damping_of(c.restitution, std::string(from) + ".restitution");
   } else if (from != nullptr) {
     c.damping = number("damping", fallback.damping, Range::non_negative());
   } else {
     if (!t.has("damping"))
       t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the "
-                                    "damping then follows for "
-                                    "two particles of particles.diameter, reduced mass {:.4g} kg)",
+                                    "dashpot then follows each pair's reduced mass, {:.4g} kg for "
+                                    "two particles of particles.diameter)",
                                     m_eff));
     c.damping = t.required_number("damping", Range::non_negative());
   }
@@ -127,8 +128,8 @@ std::vector<double> parse_parcel_ratios(TableReader& t, std::size_t classes) {
     ratios.push_back(t.number("parcel_ratio", 1.0, at_least_one));
   }
   if (KeyFact* f = t.recorded_fact("parcel_ratio"))
-    *f = KeyFact{"number or list of numbers", "none (particles.parcel_diameter)", at_least_one.describe() +
-                 " (a parcel holds whole particles)"};
+    *f = KeyFact{"number or list of numbers", "none (particles.parcel_diameter)",
+                 at_least_one.describe() + " (a parcel holds whole particles)"};
   return ratios;
 }
 
@@ -159,7 +160,7 @@ bool agrees_with_floor(double y, const LayerFloor& floor) {
 }
 
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
-                     const BoundaryConfig& boundary) {
+                     const BoundaryConfig& boundary, bool larger_than_cells) {
   t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature",
                  "parcel_diameter", "parcel_ratio", "layer", "real_per_parcel", "contact",
                  "wall_contact", "cohesion", "courant", "skin", "fast_skin_substeps", "gravity",
@@ -231,8 +232,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   }
   // The key a user changes to get smaller parcels (the diameter unless coarse graining is set).
   const char* size_key = parcel_diameter_given ? "parcel_diameter"
-                         : ratios.empty()        ? "diameter"
-                                                 : "parcel_ratio";
+                         : ratios.empty()      ? "diameter"
+                                               : "parcel_ratio";
 
   TableReader lt = t.table("layer");
   lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "thickness", "arrangement", "settle", "seed",
@@ -269,10 +270,11 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   // plane's fraction instead, (pi D^2/4) / V_p (15,000 /m for 100 um).
   const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
   double derived = 0.0;
-  double planned = 0.0;  // a generated layer's planned parcel count
+  double planned = 0.0;              // a generated layer's planned parcel count
   std::vector<double> class_counts;  // parcels per class: each class's real count
   if (!ratios.empty() && L.arrangement == LayerArrangement::File)
-    t.fail("parcel_ratio", "not used with arrangement = \"file\": the file gives each parcel's diameter");
+    t.fail("parcel_ratio",
+           "not used with arrangement = \"file\": the file gives each parcel's diameter");
   if (class_parcels && L.arrangement != LayerArrangement::Columnar) {
     t.fail("parcel_ratio",
            fmt::format("with [particles.size_distribution] each class has parcels of its own "
@@ -293,10 +295,14 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     }
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
     note_volume_fraction_default(lt);
-    const ParcelFileLimits limits{
-        grid.x.start,          grid.x.end,
-        grid.y.start,          grid.y.end,
-        dem.particle_diameter, min_cell_width(grid) * (1.0 + kCellTolerance)};
+    const ParcelFileLimits limits{grid.x.start,
+                                  grid.x.end,
+                                  grid.y.start,
+                                  grid.y.end,
+                                  dem.particle_diameter,
+                                  larger_than_cells
+                                      ? std::numeric_limits<double>::infinity()
+                                      : min_cell_width(grid) * (1.0 + kCellTolerance)};
     const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter,    0.0,
                                 0.0, 0.0, dem.initial_temperature};
     dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
@@ -311,18 +317,19 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                        : equal_fraction_real_per_parcel(dem.parcel_diameter, dem.particle_diameter);
   } else {
     if (lt.has("file")) lt.fail("file", "only used with arrangement = \"file\"");
-    if (poly) check_class_sizes(dist, sd, dem, grid);  // before the plan, which needs them to fit
+    if (poly && !larger_than_cells) check_class_sizes(dist, sd, dem, grid);  // before the plan
     // A size in the wrong unit (40 for 40 um) would otherwise surface as a packing error.
-    const double depth = L.y_max - L.y_min, cell = min_cell_width(grid);
+    const double depth = L.y_max - L.y_min;
+    const double cell =
+        larger_than_cells ? std::numeric_limits<double>::infinity() : min_cell_width(grid);
     if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
-      t.fail(size_key,
-             fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m){}",
-                         dem.parcel_diameter,
-                         dem.parcel_diameter > depth ? "the layer's depth"
-                                                     : "the smallest grid cell",
-                         dem.parcel_diameter > depth ? depth : cell,
-                         ratios.empty() ? "; lengths are in metres (40 um is 40e-6)"
-                                        : ": a smaller parcel ratio"));
+      t.fail(
+          size_key,
+          fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m){}", dem.parcel_diameter,
+                      dem.parcel_diameter > depth ? "the layer's depth" : "the smallest grid cell",
+                      dem.parcel_diameter > depth ? depth : cell,
+                      ratios.empty() ? "; lengths are in metres (40 um is 40e-6)"
+                                     : ": a smaller parcel ratio"));
     }
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
@@ -351,8 +358,9 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
       // Columns of one class each: no lattice, no loose top (class_columns.hpp).
       for (const char* key : {"loose_top_rows", "loose_top_fill"}) {
         if (lt.has(key))
-          lt.fail(key, "not used with particles.parcel_ratio and a size distribution (columns "
-                       "of one class each)");
+          lt.fail(key,
+                  "not used with particles.parcel_ratio and a size distribution (columns "
+                  "of one class each)");
       }
       try {
         class_counts = plan_class_columns(dem).real_per_parcel;
@@ -396,11 +404,11 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     }
     std::string per_class = "[";
     for (std::size_t k = 0; k < dist.classes.size(); ++k) {
-      per_class += fmt::format(
-          "{}{:.17g}", k ? ", " : "",
-          class_parcels
-              ? class_counts[k]
-              : derived_real_per_parcel(L.volume_fraction, area, planned, dist.classes[k].diameter));
+      per_class +=
+          fmt::format("{}{:.17g}", k ? ", " : "",
+                      class_parcels ? class_counts[k]
+                                    : derived_real_per_parcel(L.volume_fraction, area, planned,
+                                                              dist.classes[k].diameter));
     }
     t.note_derived(
         "real_per_parcel", per_class + "]",

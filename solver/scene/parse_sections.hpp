@@ -36,8 +36,10 @@ void parse_gas(TableReader t, GasConfig& gas);
 void parse_boundary(TableReader t, BoundaryConfig& b, const ThermoConfig& thermo);
 void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& thermo,
                    const GridConfig& grid);
+/// `larger_than_cells`: particles may be larger than the cells (a one-way run that averages the
+/// undisturbed flow over each particle, coupling.finite_size).
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
-                     const BoundaryConfig& boundary);
+                     const BoundaryConfig& boundary, bool larger_than_cells = false);
 /// [particles.cohesion]: van der Waals cohesion per real pair (off without the table).
 void parse_cohesion(TableReader t, DemConfig& dem);
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);

@@ -195,6 +195,9 @@ constexpr SceneKeyDoc kDocs[] = {
     {"coupling.added_mass_fluid_acceleration", "",
      "the gas's momentum rate D(rho u)/Dt in the added mass: the resolved gas's, or -grad p "
      "(Ling et al. 2012, dilute clouds)"},
+    {"coupling.finite_size", "",
+     "the pressure-gradient force and the added mass's fluid part averaged over the particle's "
+     "volume (Faxen form), for particles larger than the cells"},
     {"coupling.rotation_torque", "",
      "the fluid torque on a spinning particle (Dennis, Singh & Ingham)"},
     {"coupling.torque_stokes_below", "1",

@@ -95,7 +95,12 @@ Scene parse_scene_into(const std::string& text, const std::string& name,
   parse_gas(root.table("gas"), scene.gas);
   parse_boundary(root.table("boundary"), scene.gas.boundary, scene.gas.thermo);
   parse_initial(root.table("initial", true), scene.initial, scene.gas.thermo, scene.grid);
-  parse_particles(root.table("particles"), scene.particles, scene.grid, scene.gas.boundary);
+  // Particles larger than the cells are for a one-way run that averages the flow over them.
+  TableReader coupling = root.lookahead("coupling");
+  const bool larger_than_cells =
+      coupling.boolean("finite_size", false) && !coupling.boolean("two_way", true);
+  parse_particles(root.table("particles"), scene.particles, scene.grid, scene.gas.boundary,
+                  larger_than_cells);
   parse_coupling(root.table("coupling"), scene.coupling, scene.particles, scene.grid);
   parse_output(root.table("output"), scene.output, scene.run, scene.particles, scene.grid);
   parse_insitu(root.table("insitu"), scene.insitu);

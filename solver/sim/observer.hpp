@@ -18,7 +18,7 @@ namespace dustlift {
 
 class ParcelSystem;         // solver/dem/parcel_system.hpp
 class GasParticleCoupling;  // solver/coupling/gas_particle_coupling.hpp
-class Communicator;         // solver/parallel/communicator.hpp
+class Communicator;         // solver/core/communicator.hpp
 class DerivedFields;        // solver/sim/derived_fields.hpp
 
 /// How the run was made, for the files that record it (VTK field data, series.h5 attributes).

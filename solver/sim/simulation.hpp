@@ -12,7 +12,7 @@
 #include "solver/coupling/gas_particle_coupling.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_solver.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/derived_fields.hpp"

@@ -3,7 +3,7 @@
 // test, only rank 0 prints, and a failure on any rank fails the run (and mpirun's exit code).
 #include <gtest/gtest.h>
 
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 
 namespace dustlift {
 

@@ -14,7 +14,7 @@
 
 #include "mpi/mpi_test_main.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/table_reader.hpp"
 #include "solver/sim/simulation.hpp"

@@ -12,7 +12,7 @@
 #include "insitu/checkpoint.hpp"
 #include "mpi/mpi_test_main.hpp"
 #include "solver/core/errors.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sim/simulation.hpp"
 

@@ -14,7 +14,7 @@
 #include "mpi/mpi_test_main.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 #include "solver/parallel/parcel_slabs.hpp"
 
 namespace dustlift {

@@ -82,6 +82,8 @@ ModelInput sample_at(double rho, double u, double v, double alpha_g, double dpdx
   in.gas.alpha_g = alpha_g;
   in.gas.dpdx = dpdx;
   in.gas.dpdy = dpdy;
+  in.gas.rho_u = rho * u;
+  in.gas.rho_v = rho * v;
   const double d = 115e-6;
   in.parcel = ParcelAtSample{0.0, 0.0, 0.0, d, 2520.0 * kPi / 6.0 * d * d * d};
   in.slip = std::hypot(u, v);
@@ -162,6 +164,7 @@ TEST(AddedMass, ImplicitVirtualMassKeepsADenseCloudStable) {
   double rho_u = 0.0, used = 0.0;
   for (int step = 0; step < 40; ++step) {
     in.gas.u = rho_u / rho;
+    in.gas.rho_u = rho_u;
     p.sample(in, dt * step);
     used = p.fluid_part().x / (c_m * vp);  // the rate the parcels take
     // The gas over the step: its own acceleration less the cloud's reaction.

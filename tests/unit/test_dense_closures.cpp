@@ -172,7 +172,7 @@ TEST(ParcelFronts, LineOfSightEdgesWhereTheOpticalDepthCrossesTheThreshold) {
   const std::vector<double> x{0.0002, 0.0007, 0.0015, 0.0025};
   const std::vector<double> n{25000.0, 25000.0, 20000.0, 10000.0};
   const std::vector<double> d(4, 100e-6);
-  std::vector<double> scratch;
+  SightProfile scratch;
   const SightEdges e = line_of_sight_edges(x, n, d, sight, scratch);
   const double t0 = 50000.0 * per_bead, t1 = 20000.0 * per_bead;  // bins [0, 1) and [1, 2) mm
   ASSERT_GT(t0, 1.0);

@@ -7,7 +7,7 @@
 
 #include "solver/core/field.hpp"
 #include "solver/core/grid.hpp"
-#include "solver/parallel/communicator.hpp"
+#include "solver/core/communicator.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 
 namespace dustlift {

@@ -13,8 +13,9 @@ AddedMassEffect::AddedMassEffect(const CouplingConfig& c)
 
 std::string AddedMassEffect::description() const {
   using V = aero::AddedMassVolumeFraction;
-  return std::string("added mass (inviscid unsteady): C_M = 1/2 (1 + 1.8 Ma^2 + 7.6 Ma^4) "
-                     "(Parmar et al. 2008)") +
+  return std::string(
+             "added mass (inviscid unsteady): C_M = 1/2 (1 + 1.8 Ma^2 + 7.6 Ma^4) "
+             "(Parmar et al. 2008)") +
          (correction_ == V::Beguin  ? " x (1 + 0.68 alpha_p^2) (Beguin et al. 2016)"
           : correction_ == V::Zuber ? " x (1 + 2 alpha_p)/(1 - alpha_p) (Zuber 1964)"
                                     : "") +
@@ -72,10 +73,11 @@ void AddedMassEffect::coefficients(const ModelInput* in, std::size_t k0, std::si
     Vec2 fluid;
     if (resolved) {
       // The rates along the parcel's path since its last sample (none at the first).
-      const double mx = g.rho * g.u, my = g.rho * g.v;
+      const double mx = g.rho_u, my = g.rho_v;
       const double elapsed = step.time - sampled_at[k];
       const bool known = sampled[k] != 0.0 && elapsed > 0.0;
-      const Vec2 along = known ? Vec2{(mx - rho_u[k]) / elapsed, (my - rho_v[k]) / elapsed} : Vec2{};
+      const Vec2 along =
+          known ? Vec2{(mx - rho_u[k]) / elapsed, (my - rho_v[k]) / elapsed} : Vec2{};
       const double drho = known ? (g.rho - rho[k]) / elapsed : 0.0;
       const Vec2 measured = aero::momentum_rate_following_gas(
           along, {g.u - p.vx, g.v - p.vy}, {g.dx_rho_u, g.dy_rho_u, g.dx_rho_v, g.dy_rho_v});

@@ -78,10 +78,7 @@ std::vector<std::string> DragEffect::validity(const FlowEnvelope& e) const {
 
 void DragEffect::attach(ParcelTable& t) {
   namespace c = effect_columns;
-  // The sampled coefficient is read for resting parcels in later steps (the implicit exchange
-  // sums every parcel of a cell): kept in checkpoints.
-  sampled_ = c::carried(t, "drag_coefficient_sampled", "N s/m");
-  applied_ = c::coefficient(t, "drag_coefficient", "N s/m");
+  attach_stiff(t, "drag_coefficient", "N s/m");
   fx_ = c::part(t, "drag_fx", "N", ForcePart::Drag, "force_drag", 0, "parcels/drag_fx");
   fy_ = c::part(t, "drag_fy", "N", ForcePart::Drag, "force_drag", 1, "parcels/drag_fy");
 }

@@ -13,22 +13,13 @@ namespace dustlift {
 
 struct CouplingConfig;
 
-class DragEffect final : public BatchedEffect<DragEffect> {
+class DragEffect final : public BatchedEffect<DragEffect>, public StiffColumns {
  public:
   explicit DragEffect(const CouplingConfig& c);
   std::string description() const override;
   std::vector<std::string> validity(const FlowEnvelope& e) const override;
   void attach(ParcelTable& t) override;
-  std::optional<StiffCoefficient> stiff_momentum() const override {
-    return StiffCoefficient{sampled_, applied_};
-  }
-
-  struct Columns {
-    double *sampled, *applied;
-  };
-  Columns columns(ParcelTable& t) const {
-    return {t.column(sampled_).data(), t.column(applied_).data()};
-  }
+  std::optional<StiffCoefficient> stiff_momentum() const override { return stiff(); }
   /// K = beta (aero::drag_coefficient) at the step's slip.
   void coefficient(const ModelInput& in, std::size_t k, Columns& out) const {
     const GasSample& g = in.gas;
@@ -55,7 +46,7 @@ class DragEffect final : public BatchedEffect<DragEffect> {
  private:
   bool compressible_;
   aero::VolumeFractionCorrection xi2_;
-  ParcelColumn sampled_, applied_, fx_, fy_;
+  ParcelColumn fx_, fy_;
 };
 
 }  // namespace dustlift

@@ -31,6 +31,9 @@ struct GasSample {
   double dpdx = 0.0, dpdy = 0.0;
   /// grad(rho u) and grad(rho v), the gas momentum's gradient
   double dx_rho_u = 0.0, dy_rho_u = 0.0, dx_rho_v = 0.0, dy_rho_v = 0.0;
+  /// The gas momentum at the parcel: rho u, rho v (their averages over the particle with
+  /// coupling.finite_size)
+  double rho_u = 0.0, rho_v = 0.0;
 };
 
 /// The parcel seen by the effects at the start of the CFD step.
@@ -97,13 +100,34 @@ class CouplingEffect {
   /// Attaches the effect's columns to the parcel table (once, when the coupling starts).
   virtual void attach(ParcelTable& table) = 0;
   /// The coefficients of parcels [k0, k0 + n), whose samples are in[0 .. n).
-  virtual void coefficients(const ModelInput* in, std::size_t k0, std::size_t n,
-                            ParcelTable& table, const StepContext& step) const = 0;
+  virtual void coefficients(const ModelInput* in, std::size_t k0, std::size_t n, ParcelTable& table,
+                            const StepContext& step) const = 0;
   /// The momentum or heat exchange coefficient the implicit exchange scales, if any.
   virtual std::optional<StiffCoefficient> stiff_momentum() const { return std::nullopt; }
   virtual std::optional<StiffCoefficient> stiff_heat() const { return std::nullopt; }
   /// Where the flow leaves the range the law was fitted or derived in (one line each).
   virtual std::vector<std::string> validity(const FlowEnvelope&) const { return {}; }
+};
+
+/// The two columns of a stiff exchange coefficient (drag's, the heat transfer's): as sampled
+/// (kept in checkpoints: the implicit exchange sums every parcel of a cell, resting ones too)
+/// and as the sub-steps apply it.
+class StiffColumns {
+ public:
+  struct Columns {
+    double *sampled, *applied;
+  };
+  Columns columns(ParcelTable& t) const {
+    return {t.column(sampled_).data(), t.column(applied_).data()};
+  }
+
+ protected:
+  void attach_stiff(ParcelTable& t, const char* name, const char* unit) {
+    sampled_ = t.attach_column({std::string(name) + "_sampled", unit, true, false});
+    applied_ = t.attach_column({name, unit, false, false});
+  }
+  StiffCoefficient stiff() const { return {sampled_, applied_}; }
+  ParcelColumn sampled_, applied_;
 };
 
 /// The batch loop over an effect's per-parcel `coefficient(const ModelInput&, std::size_t k,

@@ -24,12 +24,9 @@ using SubstepEffectTypes = TypeList<DragEffect, MagnusEffect, PressureForceEffec
                                     RotationTorqueEffect, HeatTransferEffect>;
 
 /// Writes Omega_g - w of the parcel when the force parts are stored (band filters read it).
-struct RelativeRotation : SubstepRoles {
-  using Part = double;
+struct RelativeRotation : SubstepRoles, StoresValue {
   const double* rotation;
-  double* out;
   double force(std::size_t i, SubstepParcel& p) const { return rotation[i] - p.omega; }
-  void store(std::size_t i, double w_r) const { out[i] = w_r; }
 };
 
 /// The active effects' functors composed into forced_euler: one instantiation per combination
@@ -49,7 +46,7 @@ class ComposedForcing final : public ParcelForcing {
     a.heat = ps.column(c_.heat).data();
     const FrozenGas gas{ps.column(c_.gas_u).data(), ps.column(c_.gas_v).data(),
                         ps.column(c_.gas_rotation).data(), ps.column(c_.gas_temperature).data()};
-    const RelativeRotation rotation{{}, gas.rotation, ps.column(c_.relative_rotation).data()};
+    const RelativeRotation rotation{{}, {ps.column(c_.relative_rotation).data()}, gas.rotation};
     return run<0>(ps, a, gas, n, dt, store, rotation);
   }
 

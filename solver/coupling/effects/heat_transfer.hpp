@@ -10,28 +10,17 @@
 
 namespace dustlift {
 
-class HeatTransferEffect final : public BatchedEffect<HeatTransferEffect> {
+class HeatTransferEffect final : public BatchedEffect<HeatTransferEffect>, public StiffColumns {
  public:
   std::string description() const override {
     return "heat transfer (Ranz-Marshall) and particle temperature";
   }
   void attach(ParcelTable& t) override {
     namespace c = effect_columns;
-    // The sampled conductance is read for resting parcels in later steps: kept in checkpoints.
-    sampled_ = c::carried(t, "heat_coefficient_sampled", "W/K");
-    applied_ = c::coefficient(t, "heat_coefficient", "W/K");
+    attach_stiff(t, "heat_coefficient", "W/K");
     rate_ = c::part(t, "heat_rate", "W", ForcePart::Heat, "", 0, "parcels/heat_rate");
   }
-  std::optional<StiffCoefficient> stiff_heat() const override {
-    return StiffCoefficient{sampled_, applied_};
-  }
-
-  struct Columns {
-    double *sampled, *applied;
-  };
-  Columns columns(ParcelTable& t) const {
-    return {t.column(sampled_).data(), t.column(applied_).data()};
-  }
+  std::optional<StiffCoefficient> stiff_heat() const override { return stiff(); }
   /// H = pi d lambda Nu, Nu = Ranz-Marshall at the step's Re and the gas's Prandtl number.
   void coefficient(const ModelInput& in, std::size_t k, Columns& out) const {
     const GasSample& g = in.gas;
@@ -40,24 +29,21 @@ class HeatTransferEffect final : public BatchedEffect<HeatTransferEffect> {
   }
 
   /// The sub-step: Q = H (T_g - T).
-  struct Substep : SubstepRoles {
+  struct Substep : SubstepRoles, StoresValue {
     static constexpr bool kHeat = true;
-    using Part = double;
     const double *temperature, *H;
-    double* out;
     double force(std::size_t i, SubstepParcel& p) const {
       const double q = aero::linear_heat_flow(H[i], temperature[i], p.temperature);
       p.heat += q;
       return q;
     }
-    void store(std::size_t i, double q) const { out[i] = q; }
   };
   Substep substep(ParcelTable& t, const FrozenGas& g) const {
-    return {{}, g.temperature, t.column(applied_).data(), t.column(rate_).data()};
+    return {{}, {t.column(rate_).data()}, g.temperature, t.column(applied_).data()};
   }
 
  private:
-  ParcelColumn sampled_, applied_, rate_;
+  ParcelColumn rate_;
 };
 
 }  // namespace dustlift

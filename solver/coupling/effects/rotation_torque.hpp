@@ -31,20 +31,17 @@ class RotationTorqueEffect final : public BatchedEffect<RotationTorqueEffect> {
   }
 
   /// The sub-step: M = kappa (Omega_g - w).
-  struct Substep : SubstepRoles {
+  struct Substep : SubstepRoles, StoresValue {
     static constexpr bool kTorque = true;
-    using Part = double;
     const double *rotation, *kappa;
-    double* out;
     double force(std::size_t i, SubstepParcel& p) const {
       const double m = aero::linear_torque(kappa[i], rotation[i] - p.omega);
       p.torque += m;
       return m;
     }
-    void store(std::size_t i, double m) const { out[i] = m; }
   };
   Substep substep(ParcelTable& t, const FrozenGas& g) const {
-    return {{}, g.rotation, t.column(coefficient_).data(), t.column(torque_).data()};
+    return {{}, {t.column(torque_).data()}, g.rotation, t.column(coefficient_).data()};
   }
 
  private:

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "solver/parallel/communicator.hpp"
+#include "solver/parallel/world.hpp"
 
 namespace dustlift {
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
 // The few collective and neighbour operations the decomposed run needs, behind an
-// interface so that nothing outside solver/parallel/mpi/ includes mpi.h and a build without
-// MPI links the same code (make_world_communicator() then returns a one-rank world).
+// interface: the physics and the driver see only this (solver/parallel/world.hpp makes the
+// program's world; nothing outside solver/parallel/mpi/ includes mpi.h, and a build without
+// MPI links the same code with a one-rank world).
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
@@ -45,26 +46,6 @@ class Communicator {
   /// Ends every rank's process with this exit code (an error only one rank met).
   [[noreturn]] virtual void abort(int code) const = 0;
 };
-
-/// MPI for the life of the program (MPI_Init_thread with MPI_THREAD_FUNNELED: OpenMP
-/// threads inside a rank, MPI calls from its main thread only); nothing without MPI.
-class ParallelSession {
- public:
-  ParallelSession(int& argc, char**& argv);
-  ~ParallelSession();
-  ParallelSession(const ParallelSession&) = delete;
-  ParallelSession& operator=(const ParallelSession&) = delete;
-
- private:
-  bool started_ = false;  ///< this session called MPI_Init_thread (and so finalizes)
-};
-
-/// The ranks the program was started on (MPI_COMM_WORLD; one rank without MPI or before a
-/// ParallelSession).
-std::unique_ptr<Communicator> make_world_communicator();
-
-/// Whether this build has MPI (the CLI reports it in `dustlift info`).
-bool built_with_mpi();
 
 /// One rank on its own: the serial run's communicator.
 class SingleRank final : public Communicator {
