@@ -126,7 +126,8 @@ def main(argv):
         for rb, cb, qb, _ in data[i + 1:]:
             if (ra == rb) == (ca == cb):
                 continue  # the same run, or two settings changed at once
-            diffs = " | ".join("%+.1f" % (100.0 * (qb[k] - qa[k]) / qa[k]) if qa[k] else "n/a"
+            diffs = " | ".join("%+.1f" % (100.0 * (qb[k] - qa[k]) / qa[k])
+                               if qa[k] and np.isfinite(qa[k]) and np.isfinite(qb[k]) else "n/a"
                                for k in keys)
             lines.append("| %s -> %s | %s |" % (label(ra, ca), label(rb, cb), diffs))
     table = "\n".join(lines)
