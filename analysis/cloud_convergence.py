@@ -17,7 +17,11 @@ parcel ratio (particles.parcel_ratio, else the parcel diameter) and its cell siz
   per class         classK_lifted_mass_kg_per_m at the last output, g/m
 
 The second table gives, for every pair of runs that differ in the ratio alone or in the cell
-alone, the relative difference of each quantity, (b - a) / a, in %. Writes the PNG (lifted mass
+alone, the relative difference of each quantity, (b - a) / a, in %. Where the runs end with a
+checkpoint.h5, a third table gives each class's lifted parcels (centre above the lift height at
+the end) over the parcels of its top row (centre within one parcel diameter of the initial
+layer top): near 1 the class lost about its top row, so its lifted mass is set by its parcel
+size, not resolved by it (docs/dust-cloud.md, "A convergence study"). Writes the PNG (lifted mass
 and mass above 1 mm against time, one curve per run) to --out (default
 convergence.png beside the first RUNDIR).
 """
@@ -86,6 +90,42 @@ def cloud(run):
     return q, s
 
 
+def lift_level(run):
+    """(initial layer top, lift height) in m from the resolved scene; a derived lift height is
+    a comment line there ("#   output.cloud_lift_height = ...")."""
+    path = os.path.join(run, "scene.resolved.toml")
+    with open(path, "rb") as f:
+        scene = tomllib.load(f)
+    top = scene.get("particles", {}).get("layer", {}).get("y_max", 0.0)
+    height = scene.get("output", {}).get("cloud_lift_height")
+    if height is None:
+        with open(path) as f:
+            for line in f:
+                words = line.lstrip("# ").split()
+                if len(words) >= 3 and words[0] == "output.cloud_lift_height" and words[1] == "=":
+                    height = float(words[2])
+    return top, height
+
+
+def top_rows(run):
+    """Per class: lifted parcels at the end over the parcels of its top row, from the run's
+    checkpoint.h5; None without a checkpoint or a lift height."""
+    path = os.path.join(run, "checkpoint.h5")
+    top, height = lift_level(run)
+    if not os.path.exists(path) or height is None:
+        return None
+    import h5py
+    with h5py.File(path, "r") as f:
+        p = {k: f["parcels/" + k][()] for k in ("y", "y_initial", "size_class", "diameter")}
+    ratios = []
+    for k in range(int(p["size_class"].max()) + 1):
+        c = p["size_class"] == k
+        row0 = c & (top - p["y_initial"] < p["diameter"])
+        lifted = c & (p["y"] > top + height)
+        ratios.append(lifted.sum() / row0.sum() if row0.any() else float("nan"))
+    return ratios
+
+
 def label(ratio, cell):
     if isinstance(ratio, str):
         r = ratio
@@ -130,6 +170,15 @@ def main(argv):
                                if qa[k] and np.isfinite(qa[k]) and np.isfinite(qb[k]) else "n/a"
                                for k in keys)
             lines.append("| %s -> %s | %s |" % (label(ra, ca), label(rb, cb), diffs))
+    rows = [(ratio, cell, top_rows(run)) for ratio, cell, run in
+            sorted(((setting(r) + (r,)) for r in runs), key=lambda d: (str(d[0]), -d[1]))]
+    if all(r[2] is not None for r in rows):
+        n = max(len(r[2]) for r in rows)
+        lines += ["", "| run (lifted parcels / top row) | " +
+                  " | ".join("class %d" % k for k in range(n)) + " |",
+                  "|---|" + "---|" * n]
+        for ratio, cell, r in rows:
+            lines.append("| %s | " % label(ratio, cell) + " | ".join("%.2f" % v for v in r) + " |")
     table = "\n".join(lines)
     print(table)
     if args.table:

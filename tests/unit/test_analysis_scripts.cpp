@@ -326,8 +326,9 @@ TEST_F(AnalysisScripts, CloudConvergenceComparesRunsThatDifferInOneSetting) {
   // half is half the lifted mass over 0.1 ms.
   const auto dir = fresh_dir("cloud_convergence");
   const auto scene = [](const char* ratio, const char* cell) {
-    return std::string("[particles]\nparcel_ratio = ") + ratio + "\n[grid.x]\ncell_size = " + cell +
-           "\n";
+    return std::string("[particles]\nparcel_ratio = ") + ratio +
+           "\n[particles.layer]\ny_max = 0.0\n[grid.x]\ncell_size = " + cell +
+           "\n#   output.cloud_lift_height = 1.5e-05   # from particles.diameter\n";
   };
   write_cloud_sweep(dir, {"particles_parcel_ratio", "grid_x_cell_size"},
                     {{"r2c25", {"2", "0.00025"}},
@@ -337,8 +338,22 @@ TEST_F(AnalysisScripts, CloudConvergenceComparesRunsThatDifferInOneSetting) {
                     {scene("2.0", "0.00025"), scene("2.0", "0.0005"), scene("4.0", "0.00025"),
                      scene("4.0", "0.0005")},
                     {4.0e-3, 4.4e-3, 5.0e-3, 5.5e-3}, {0.1, 0.1, 0.1, 0.1});
+  // Each run's final parcels: class 0 (D = 0.1 mm) has 3 parcels in its top row and 3 below,
+  // 2 of the top row and 2 below above the lift height (15 um; one top parcel at 10 um is not):
+  // 4/3 of a top row lifted; class 1 (D = 0.2 mm) 1 of its 2 top parcels: 0.5.
+  for (const char* name : {"r2c25", "r2c50", "r4c25", "r4c50"}) {
+    const auto [h5, h5_output] =
+        run(std::string(kPython) + " -c 'import h5py; f = h5py.File(\"" +
+            (dir / name / "checkpoint.h5").string() +
+            "\", \"w\"); d = {\"y_initial\": [-5e-5] * 3 + [-1.5e-4] * 3 + [-1e-4] * 2, "
+            "\"y\": [1e-3, 1e-3, 1e-5, 1e-3, 1e-3, -1.5e-4, 1e-3, -1e-4], "
+            "\"size_class\": [0.0] * 6 + [1.0] * 2, \"diameter\": [1e-4] * 6 + [2e-4] * 2}; "
+            "[f.create_dataset(\"parcels/\" + k, data=v) for k, v in d.items()]'");
+    ASSERT_EQ(h5, 0) << h5_output;
+  }
   const auto [status, output] = run(script("cloud_convergence.py") + " " + dir.string());
   ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("| ratio 4, 0.25 mm cells | 1.33 | 0.50 |"), std::string::npos) << output;
   // lifted, above 1 mm (not in these series), explosible, entrainment, its 2nd-half mean.
   EXPECT_NE(output.find("| ratio 2, 0.25 mm cells | 0.200 | 4 | nan | 0.4 | 40 | 20 |"),
             std::string::npos)
