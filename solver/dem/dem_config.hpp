@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "solver/laws/cohesion.hpp"
 #include "solver/laws/contact.hpp"
 
 namespace dustlift {
@@ -91,7 +92,18 @@ struct DemDomain {
 struct SizeClass {
   double diameter = 100e-6;    ///< m, real particle diameter
   double mass_fraction = 1.0;  ///< share of the layer's mass (the classes' shares sum to 1)
+  /// m, the class's own parcel diameter (particles.parcel_ratio times `diameter`); 0: the
+  /// layer's one DemConfig::parcel_diameter.
+  double parcel_diameter = 0.0;
 };
+
+/// Whether the classes have parcels of their own sizes (particles.parcel_ratio with a size
+/// distribution): the layer is then packed in columns of one class each (class_columns.hpp).
+inline bool has_class_parcels(const std::vector<SizeClass>& classes) {
+  for (const SizeClass& c : classes)
+    if (c.parcel_diameter > 0.0) return true;
+  return false;
+}
 
 struct DemConfig {
   bool enabled = false;  ///< false: a gas-only scene, no parcel code runs
@@ -119,6 +131,9 @@ struct DemConfig {
   std::vector<PlacedParcel> layer_parcels;
   ContactParams contact;       ///< parcel–parcel
   ContactParams wall_contact;  ///< parcel–wall (defaults to `contact`)
+  /// Van der Waals cohesion per real pair (off unless the scene sets [particles.cohesion]).
+  CohesionParams cohesion;
+  CohesionParams wall_cohesion;  ///< a particle and a wall (defaults to `cohesion`)
   DemDomain domain;
 
   double courant = 0.1;                     ///< nu_DEM of eq. (18): dt = nu sqrt(m / max(k_n, k_t))

@@ -51,6 +51,7 @@ void ParcelSystem::step_with_parts(double dt, bool store_parts) {
 }
 
 void ParcelSystem::compute_contacts(double dt) {
+  const bool restitution = cfg_.contact.restitution > 0.0 || cfg_.wall_contact.restitution > 0.0;
   if (!counts_known_) {
     // Whether any two parcels hold different real counts (size classes, or layer-file parcels
     // of different diameters): only then the pair rule below is needed, and a layer of one
@@ -61,19 +62,42 @@ void ParcelSystem::compute_contacts(double dt) {
     mixed_counts_ = ranks_ != nullptr ? ranks_->any(mixed) : mixed;
     counts_known_ = true;
   }
-  if (mixed_counts_) {
-    contacts_pass<true>(dt);
-  } else {
-    contacts_pass<false>(dt);
-  }
+  // A restitution is the material's: every pair's dashpot follows its own reduced mass.
+  const bool pair_damping = restitution;
+  const bool cohesive = cfg_.cohesion.enabled() || cfg_.wall_cohesion.enabled();
+  using Pass = void (ParcelSystem::*)(double);
+  static constexpr Pass kPasses[8] = {
+      &ParcelSystem::contacts_pass<false, false, false>,
+      &ParcelSystem::contacts_pass<false, false, true>,
+      &ParcelSystem::contacts_pass<false, true, false>,
+      &ParcelSystem::contacts_pass<false, true, true>,
+      &ParcelSystem::contacts_pass<true, false, false>,
+      &ParcelSystem::contacts_pass<true, false, true>,
+      &ParcelSystem::contacts_pass<true, true, false>,
+      &ParcelSystem::contacts_pass<true, true, true>,
+  };
+  const int which = (mixed_counts_ ? 4 : 0) + (pair_damping ? 2 : 0) + (cohesive ? 1 : 0);
+  (this->*kPasses[which])(dt);
 }
 
-template <bool Mixed>
+template <bool Mixed, bool PairDamping, bool Cohesive>
 void ParcelSystem::contacts_pass(double dt) {
   const std::size_t n = stepped_count();
   const ContactParams pc = cfg_.contact;
   const ContactParams wc = cfg_.wall_contact;
   const double lx = length_x_;
+  // A given restitution: the dashpot of each pair (and of each parcel at a wall) follows its
+  // reduced mass, h = c(e) sqrt(m_eff k_n) (docs/dem.md, "Restitution").
+  const bool pair_follows = PairDamping && pc.restitution > 0.0;
+  const bool wall_follows = PairDamping && wc.restitution > 0.0;
+  const double pair_factor = pair_damping_factor_, wall_factor = wall_damping_factor_;
+  // Van der Waals cohesion per real pair (laws/cohesion.hpp): held at its pull-off force while
+  // the parcels overlap, and down to the cut-off across a gap.
+  const CohesionParams coh = cfg_.cohesion;
+  const CohesionParams wcoh = cfg_.wall_cohesion;
+  const bool pair_cohesion = Cohesive && coh.enabled();
+  const bool wall_cohesion = Cohesive && wcoh.enabled();
+  const double pair_reach = pair_reach_, wall_reach = wall_reach_;
   // Active walls: outward normal from the parcel towards the wall, and the wall plane.
   struct ActiveWall {
     int slot;
@@ -94,6 +118,8 @@ void ParcelSystem::contacts_pass(double dt) {
   const double* __restrict pw = omega.data();
   const double* __restrict pr = radius.data();
   const double* __restrict pn = n_real.data();
+  const double* __restrict pim = inv_mass_real.data();
+  const double* __restrict prd = real_diameter.data();
   const std::int32_t* __restrict off = nbr_offset.data();
   const std::int32_t* __restrict nj = nbr_index.data();
   const std::int8_t* __restrict nim = nbr_image.data();
@@ -117,6 +143,23 @@ void ParcelSystem::contacts_pass(double dt) {
     const double xi = px[i], yi = py[i], vxi = pvx[i], vyi = pvy[i], ri = pr[i];
     const double rwi = ri * pw[i];
     double fx = 0.0, fy = 0.0, tq = 0.0;
+    // Adds one pair's per-real-particle force on i (the pair rule between counts).
+    auto add_pair = [&](std::int32_t j, double pfx, double pfy, double ptq) {
+      if (!Mixed || pn[j] == pn[i]) {
+        fx += pfx;
+        fy += pfy;
+        tq += ptq;
+      } else {
+        // Parcels of different real counts (size classes, or file parcels of different
+        // diameters): the pair stands for min(n_i, n_j) real contacts, so each side's
+        // per-real-particle force is scaled by min(n_i, n_j) / n_i and the parcels' totals
+        // n_i F_i = -n_j F_j are equal and opposite (docs/dem.md, "Polydisperse layers").
+        const double share = std::min(pn[i], pn[j]) / pn[i];
+        fx += pfx * share;
+        fy += pfy * share;
+        tq += ptq * share;
+      }
+    };
     for (std::int32_t k = off[i]; k < off[i + 1]; ++k) {
       const std::int32_t j = nj[k];
       const double rj = pr[j];
@@ -127,6 +170,16 @@ void ParcelSystem::contacts_pass(double dt) {
         // Not touching: the tangential spring is released (written only when it held
         // something: most slots are idle, and stores to them dominated the profile).
         if (ndelta[k] != 0.0) ndelta[k] = 0.0;
+        if constexpr (Cohesive) {
+          // The van der Waals tail across the gap, up to the cut-off.
+          const double reach = rs + pair_reach;
+          if (pair_cohesion && pair_reach > 0.0 && d2 < reach * reach) {
+            const double dist = std::sqrt(d2);
+            const double f = van_der_waals_force(
+                coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]), dist - rs);
+            add_pair(j, f * dx / dist, f * dy / dist, 0.0);
+          }
+        }
         continue;
       }
       const double dist = std::sqrt(d2);
@@ -143,22 +196,24 @@ void ParcelSystem::contacts_pass(double dt) {
       // u_ij = u_j - u_i - (r_i w_i + r_j w_j) z x n, z x n = (-ny, nx)  (§3.6)
       const double ux = (pvx[j] - vxi) + wsum * ny;
       const double uy = (pvy[j] - vyi) - wsum * nx;
-      const ContactResult c = contact_force(pc, nx, ny, rs - dist, ux, uy, ndelta[k], ri, dt);
-      ndelta[k] = c.delta_t;
-      if (!Mixed || pn[j] == pn[i]) {
-        fx += c.fx;
-        fy += c.fy;
-        tq += c.torque;
-      } else {
-        // Parcels of different real counts (size classes, or file parcels of different
-        // diameters): the pair stands for min(n_i, n_j) real contacts, so each side's
-        // per-real-particle force is scaled by min(n_i, n_j) / n_i and the parcels' totals
-        // n_i F_i = -n_j F_j are equal and opposite (docs/dem.md, "Polydisperse layers").
-        const double share = std::min(pn[i], pn[j]) / pn[i];
-        fx += c.fx * share;
-        fy += c.fy * share;
-        tq += c.torque * share;
+      ContactParams law = pc;
+      if constexpr (PairDamping) {
+        if (pair_follows)
+          law.damping =
+              pair_damping(pair_factor, pair_effective_mass(pim[i], pim[j], pn[i], pn[j]), pc.k_n);
       }
+      ContactResult c = contact_force(law, nx, ny, rs - dist, ux, uy, ndelta[k], ri, dt);
+      ndelta[k] = c.delta_t;
+      if constexpr (Cohesive) {
+        // Attraction along n, towards j; the Coulomb limit above saw the spring-dashpot load,
+        // which holds the adhesion (DMT).
+        if (pair_cohesion) {
+          const double f = pull_off_force(coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]));
+          c.fx += f * nx;
+          c.fy += f * ny;
+        }
+      }
+      add_pair(j, c.fx, c.fy, c.torque);
     }
     const unsigned mask = wmask[i];
     for (int w = 0; w < n_walls && mask != 0; ++w) {
@@ -169,16 +224,35 @@ void ParcelSystem::contacts_pass(double dt) {
       const double gap = wall.nx != 0.0 ? wall.nx * (wall.pos - xi) : wall.ny * (wall.pos - yi);
       if (gap >= ri) {
         if (delta != 0.0) delta = 0.0;
+        if constexpr (Cohesive) {
+          if (wall_cohesion && gap - ri < wall_reach) {
+            const double f = van_der_waals_force(wcoh, 0.5 * prd[i], gap - ri);
+            fx += f * wall.nx;
+            fy += f * wall.ny;
+          }
+        }
         continue;
       }
       // The wall is at rest: u = -u_i - r_i w_i z x n.
       const double ux = -vxi + rwi * wall.ny;
       const double uy = -vyi - rwi * wall.nx;
-      const ContactResult c = contact_force(wc, wall.nx, wall.ny, ri - gap, ux, uy, delta, ri, dt);
+      ContactParams law = wc;
+      if constexpr (PairDamping) {
+        if (wall_follows) law.damping = pair_damping(wall_factor, 1.0 / pim[i], wc.k_n);
+      }
+      const ContactResult c = contact_force(law, wall.nx, wall.ny, ri - gap, ux, uy, delta, ri, dt);
       delta = c.delta_t;
       fx += c.fx;
       fy += c.fy;
       tq += c.torque;
+      if constexpr (Cohesive) {
+        if (wall_cohesion) {
+          // A sphere and a plane: R* = the real particle's radius.
+          const double f = pull_off_force(wcoh, 0.5 * prd[i]);
+          fx += f * wall.nx;
+          fy += f * wall.ny;
+        }
+      }
     }
     fx_out[i] = fx;
     fy_out[i] = fy;

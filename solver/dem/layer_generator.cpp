@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "solver/dem/class_columns.hpp"
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/size_distribution.hpp"
 
@@ -23,7 +24,26 @@ ParcelInit parcel_of(const DemConfig& cfg, double x, double y, double n_real) {
   return p;
 }
 
+/// Classes with parcels of their own sizes: columns of one class each (class_columns.hpp).
+void add_class_columns(const DemConfig& cfg, ParcelSystem& system) {
+  const ClassColumns plan = plan_class_columns(cfg);
+  const ClassColumnParcels placed = place_class_columns(cfg, plan);
+  system.reserve(placed.x.size());
+  for (std::size_t i = 0; i < placed.x.size(); ++i) {
+    const auto k = static_cast<std::size_t>(placed.size_class[i]);
+    ParcelInit p = parcel_of(cfg, placed.x[i], placed.y[i], plan.real_per_parcel[k]);
+    p.diameter = cfg.size_classes[k].parcel_diameter;
+    p.real_diameter = cfg.size_classes[k].diameter;
+    p.size_class = placed.size_class[i];
+    system.add_parcel(p);
+  }
+}
+
 void add_generated_layer(const DemConfig& cfg, ParcelSystem& system) {
+  if (has_class_parcels(cfg.size_classes)) {
+    add_class_columns(cfg, system);
+    return;
+  }
   const LayerPositions pos = generate_layer(cfg.layer, cfg.parcel_diameter);
   const double area = (cfg.layer.x_max - cfg.layer.x_min) * (cfg.layer.y_max - cfg.layer.y_min);
   // The plan's count: a loose top leaves the rows below at the layer's volume_fraction.
@@ -90,6 +110,8 @@ std::vector<int> layer_size_classes(const DemConfig& cfg, std::size_t placed) {
 
 std::string describe_size_classes(const DemConfig& cfg) {
   if (cfg.size_classes.empty()) return {};
+  if (has_class_parcels(cfg.size_classes))
+    return describe_class_columns(cfg, plan_class_columns(cfg));
   std::vector<std::int64_t> counts(cfg.size_classes.size(), 0);
   if (cfg.layer.arrangement == LayerArrangement::File) {
     for (const PlacedParcel& p : cfg.layer_parcels) {
@@ -117,6 +139,12 @@ std::string describe_layer(const DemConfig& cfg) {
   std::ostringstream s;
   s.precision(4);
   s << "layer: " << layer_arrangement_name(L.arrangement);
+  if (has_class_parcels(cfg.size_classes)) {
+    // The plan and the classes are one description (describe_size_classes).
+    s << ", " << describe_size_classes(cfg);
+    if (layer_settles(L)) s << "; settled under gravity before t = 0";
+    return s.str();
+  }
   if (L.arrangement == LayerArrangement::File) {
     s << ", " << cfg.layer_parcels.size() << " parcels from the layer file";
   } else {

@@ -24,7 +24,8 @@ void ParcelSystem::update_cell_geometry() {
 #pragma omp parallel for schedule(static) reduction(max : d_max) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) d_max = std::max(d_max, dia[i]);
   if (ranks_ != nullptr) d_max = ranks_->max(d_max);  // the same cells on every rank
-  const double cutoff = d_max + skin_;
+  // The cohesion's cut-off (0 without one) widens every reach by as much.
+  const double cutoff = d_max + skin_ + pair_reach_;
   radius_max_ = 0.5 * d_max;
   cutoff_ = cutoff;
   cells_x_ = std::max(1, static_cast<int>(std::floor(length_x_ / cutoff)));
@@ -196,7 +197,7 @@ void ParcelSystem::rebuild_neighbours() {
   };
   auto listed = [&](std::size_t i, std::int32_t j, int image) {
     const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
-    const double reach = radius[i] + radius[j] + half_skin[i] + half_skin[j];
+    const double reach = radius[i] + radius[j] + half_skin[i] + half_skin[j] + pair_reach_;
     return ddx * ddx + ddy * ddy < reach * reach;
   };
 
@@ -217,7 +218,7 @@ void ParcelSystem::rebuild_neighbours() {
         n_fast * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(threads);
     for (std::size_t f = f0; f < f1; ++f) {
       const auto i = static_cast<std::size_t>(fast_[f]);
-      const double r = 2.0 * radius_max_ + half_skin[i] + s_max;
+      const double r = 2.0 * radius_max_ + half_skin[i] + s_max + pair_reach_;
       const int block = std::max(1, static_cast<int>(std::ceil(r / min_cell)));
       for_each_nearby(i, block, [&](std::int32_t j, int image) {
         if (listed(i, j, image))
@@ -327,7 +328,7 @@ void ParcelSystem::rebuild_neighbours() {
   wall_mask.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
-    const double reach = radius[i] + 2.0 * half_skin[i];
+    const double reach = radius[i] + 2.0 * half_skin[i] + wall_reach_;
     std::uint8_t mask = 0;
     if (d.wall_bottom && y[i] - d.y_min < reach) mask |= 1u << static_cast<int>(Wall::Bottom);
     if (d.wall_top && d.y_max - y[i] < reach) mask |= 1u << static_cast<int>(Wall::Top);

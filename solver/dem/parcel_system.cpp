@@ -19,6 +19,12 @@ ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
   }
   length_x_ = d.x_max - d.x_min;
   skin_ = cfg_.skin * cfg_.parcel_diameter;
+  if (cfg_.contact.restitution > 0.0)
+    pair_damping_factor_ = restitution_damping_factor(cfg_.contact.restitution);
+  if (cfg_.wall_contact.restitution > 0.0)
+    wall_damping_factor_ = restitution_damping_factor(cfg_.wall_contact.restitution);
+  if (cfg_.cohesion.enabled()) pair_reach_ = cfg_.cohesion.cutoff;
+  if (cfg_.wall_cohesion.enabled()) wall_reach_ = cfg_.wall_cohesion.cutoff;
 }
 
 EulerArrays ParcelSystem::euler_arrays() {
@@ -200,6 +206,12 @@ double ParcelSystem::mechanical_energy() const {
           // min(n_i, n_j) real contacts (compute_contacts).
           e += 0.5 * std::min(n_real[i], n_real[j]) *
                (0.5 * pc.k_n * overlap * overlap + 0.5 * pc.k_t * nbr_delta[k] * nbr_delta[k]);
+          // The cohesion's work while touching (its tail across a gap is left out).
+          if (cfg_.cohesion.enabled()) {
+            const double f = pull_off_force(
+                cfg_.cohesion, reduced_radius(0.5 * real_diameter[i], 0.5 * real_diameter[j]));
+            e -= 0.5 * std::min(n_real[i], n_real[j]) * f * overlap;
+          }
         }
       }
     }
@@ -217,6 +229,8 @@ double ParcelSystem::mechanical_energy() const {
       const double dt_w = wall_delta[i * kWallCount + w];
       if (overlap > 0.0) {
         e += n_real[i] * (0.5 * wc.k_n * overlap * overlap + 0.5 * wc.k_t * dt_w * dt_w);
+        if (cfg_.wall_cohesion.enabled())
+          e -= n_real[i] * pull_off_force(cfg_.wall_cohesion, 0.5 * real_diameter[i]) * overlap;
       }
     }
   }

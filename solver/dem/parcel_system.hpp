@@ -83,7 +83,8 @@ class ParcelSystem : public ParcelTable {
   /// Kinetic (translation + rotation) energy, J per metre of depth (sum over real particles).
   double kinetic_energy() const;
   /// Kinetic + elastic (contact springs, from the current overlaps and stored tangential
-  /// elongations) + gravitational potential, J per metre of depth.
+  /// elongations) + gravitational potential, minus the cohesion's work over the overlaps,
+  /// J per metre of depth.
   double mechanical_energy() const;
   /// Number of parcel–parcel pairs in contact (each counted once) at the current positions.
   std::size_t contact_pair_count() const;
@@ -198,11 +199,19 @@ class ParcelSystem : public ParcelTable {
   void sort_by_cell(bool permute_data);
   friend class ParcelSlabs;  // moves the rows and the carried history at rebuilds
   void compute_contacts(double dt);
-  /// The contact pass; Mixed: parcels of different real counts meet (the pair rule).
-  template <bool Mixed>
+  /// The contact pass. Mixed: parcels of different real counts meet (the pair rule);
+  /// PairDamping: a restitution is given, so the dashpot follows each pair's reduced mass;
+  /// Cohesive: van der Waals cohesion is on. A pass
+  /// without an option compiles none of its code.
+  template <bool Mixed, bool PairDamping, bool Cohesive>
   void contacts_pass(double dt);
   bool mixed_counts_ = false;  ///< some parcels' real counts differ (valid when counts_known_)
   bool counts_known_ = false;  ///< cleared when parcels are added, restored or moved
+  /// c(e) of the parcel-parcel and parcel-wall restitutions (contact.hpp; used when given).
+  double pair_damping_factor_ = 0.0, wall_damping_factor_ = 0.0;
+  /// How far beyond touching the cohesion reaches (its cut-off): the neighbour list, the wall
+  /// mask and the rank copies look that much further.
+  double pair_reach_ = 0.0, wall_reach_ = 0.0;
   void integrate(double dt, bool store_parts);
   double wall_position(int w) const;
 

@@ -14,6 +14,9 @@ struct ContactParams {
   double damping = 1e-4;  ///< N s/m, dashpot h, same normal and tangential (paper)
   /// Coulomb limit |F_t| <= mu |F_n|; infinity switches the limit off (the paper's Table 1).
   double friction = 0.5;
+  /// The material's normal restitution e_n when the scene gives it: the dashpot then follows
+  /// for each pair's reduced mass (pair_damping); 0: the dashpot `damping` is given.
+  double restitution = 0.0;
 };
 
 /// Damping ratio zeta = h / (2 sqrt(m_eff k_n)) of the overlap ODE m_eff d'' + h d' + k_n d = 0.
@@ -37,6 +40,29 @@ inline double contact_duration(double m_eff, double k_n, double h) {
 inline double damping_for_restitution(double m_eff, double k_n, double e_n) {
   const double l = std::log(e_n);
   return -2.0 * l * std::sqrt(m_eff * k_n) / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
+
+/// c(e) = 2 (-ln e) / sqrt(pi^2 + ln^2 e): the dashpot h = c(e) sqrt(m_eff k_n) gives the
+/// restitution e to a pair of reduced mass m_eff (e = 1: c = 0, no dashpot).
+inline double restitution_damping_factor(double e_n) {
+  const double l = std::log(e_n);
+  return -2.0 * l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
+
+/// The dashpot of one pair (or of a parcel at a wall, m_eff its real particle's mass) for the
+/// restitution whose factor is c = restitution_damping_factor(e): h = c sqrt(m_eff k_n).
+inline double pair_damping(double factor, double m_eff, double k_n) {
+  return factor * std::sqrt(m_eff * k_n);
+}
+
+/// The mass of the overlap ODE m_eff d'' + h d' + k_n d = 0 of two parcels holding n_i, n_j
+/// real particles of masses m_i, m_j under the pair rule (a pair stands for min(n_i, n_j) real
+/// contacts; docs/dem.md): m_eff = 1 / (min(n_i, n_j) (1/(n_i m_i) + 1/(n_j m_j))). For equal
+/// counts it is the real particles' reduced mass m_i m_j / (m_i + m_j); `inv_m` are 1/m.
+inline double pair_effective_mass(double inv_m_i, double inv_m_j, double n_i, double n_j) {
+  if (n_i == n_j) return 1.0 / (inv_m_i + inv_m_j);
+  const double n = n_i < n_j ? n_i : n_j;
+  return 1.0 / (n * (inv_m_i / n_i + inv_m_j / n_j));
 }
 
 /// Result of one contact evaluated from particle i's side.

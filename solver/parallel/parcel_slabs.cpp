@@ -101,7 +101,8 @@ int ParcelSlabs::copy_reach_columns(const ParcelSystem& ps) const {
   const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
   const double s_max = -comm_->min(-s);
   return static_cast<int>(
-             std::ceil((2.0 * ps.radius_max_ + 2.0 * s_max + copy_margin_) / ps.cell_dx_)) +
+             std::ceil((2.0 * ps.radius_max_ + 2.0 * s_max + ps.pair_reach_ + copy_margin_) /
+                       ps.cell_dx_)) +
          1;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/dem/class_columns.hpp"
 #include "solver/dem/coarse_graining.hpp"
 #include "solver/dem/layer_generator.hpp"
 
@@ -21,6 +22,15 @@ double largest_parcel_mass(const DemConfig& dem) {
     return largest;
   }
   if (dem.real_per_parcel > 0.0) return dem.real_per_parcel * particle;
+  if (has_class_parcels(dem.size_classes)) {
+    // Parcels of a size per class: each class's parcel holds its own count.
+    const ClassColumns plan = plan_class_columns(dem);
+    double largest = 0.0;
+    for (std::size_t k = 0; k < dem.size_classes.size(); ++k)
+      largest = std::max(largest, plan.real_per_parcel[k] * dem.density *
+                                      sphere_volume(dem.size_classes[k].diameter));
+    return largest;
+  }
   // Size classes: every parcel holds the same solid volume, alpha_p A / N.
   const LayerConfig& L = dem.layer;
   const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);

@@ -10,10 +10,11 @@
 #include <optional>
 #include <stdexcept>
 
+#include "solver/dem/class_columns.hpp"
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/laws/contact.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/size_distribution.hpp"
+#include "solver/laws/contact.hpp"
 #include "solver/scene/parcel_file.hpp"
 #include "solver/scene/parse_sections.hpp"
 #include "solver/scene/resource_limits.hpp"
@@ -50,23 +51,37 @@ ContactParams parse_contact(TableReader t, const ContactParams& fallback, double
               : t.derived_number("k_t", 0.002 * c.k_n,
                                  t.full_key("k_n") + " (k_t = 0.002 k_n, the paper's ratio)",
                                  Range::non_negative());
+  // A restitution is the material's: the dashpot follows for each pair's reduced mass
+  // (docs/dem.md, "Restitution"); the one noted here is that of two particles of
+  // particles.diameter (a wall: of one), which every pair has when the layer holds one size.
+  const auto damping_of = [&](double e, const std::string& source) {
+    return t.derived_number(
+        "damping", damping_for_restitution(m_eff, c.k_n, e),
+        source + ", k_n and the particles' mass (" +
+            (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") +
+            "; the run gives every pair its own)",
+        Range::non_negative());
+  };
   if (t.has("restitution")) {
     // The linear law's e_n = exp(-pi zeta / sqrt(1 - zeta^2)) inverted for the dashpot.
     if (t.has("damping")) t.fail("restitution", "give either damping or restitution, not both");
-    const double e = t.required_number("restitution", Range::open_closed(0.0, 1.0));
-    c.damping = t.derived_number(
-        "damping", damping_for_restitution(m_eff, c.k_n, e),
-        t.full_key("restitution") + ", k_n and the particles' mass (" +
-            (from != nullptr ? "a particle at a wall" : "two particles of particles.diameter") +
-            ")",
-        Range::non_negative());
+    c.restitution = t.required_number("restitution", Range::open_closed(0.0, 1.0));
+    if (KeyFact* f = t.recorded_fact("restitution")) f->fallback = "optional (instead of damping)";
+    c.damping = damping_of(c.restitution, t.full_key("restitution"));
+  } else if (from != nullptr && !t.has("damping") && fallback.restitution > 0.0) {
+    // The walls take the particles' restitution (the same material), each parcel's dashpot
+    // following its own real mass.
+    c.restitution =
+        t.derived_number("restitution", fallback.restitution, std::string(from) + ".restitution",
+                         Range::open_closed(0.0, 1.0));
+    c.damping = damping_of(c.restitution, std::string(from) + ".restitution");
   } else if (from != nullptr) {
     c.damping = number("damping", fallback.damping, Range::non_negative());
   } else {
     if (!t.has("damping"))
       t.fail("damping", fmt::format("missing: give damping (N s/m) or restitution (0 < e <= 1; the "
-                                    "damping then follows for "
-                                    "two particles of particles.diameter, reduced mass {:.4g} kg)",
+                                    "dashpot then follows each pair's reduced mass, {:.4g} kg for "
+                                    "two particles of particles.diameter)",
                                     m_eff));
     c.damping = t.required_number("damping", Range::non_negative());
   }
@@ -90,6 +105,32 @@ void note_volume_fraction_default(TableReader& lt) {
   if (KeyFact* f = lt.recorded_fact("volume_fraction"))
     f->fallback =
         fmt::format("{:g} (with arrangement = \"file\": optional)", LayerConfig{}.volume_fraction);
+}
+
+/// particles.parcel_ratio: parcel diameter over particle diameter, one number for every size
+/// class or one per class (`classes`; 0 for a layer of one size); empty when not given.
+std::vector<double> parse_parcel_ratios(TableReader& t, std::size_t classes) {
+  if (!t.has("parcel_ratio")) return {};
+  if (t.has("parcel_diameter"))
+    t.fail("parcel_ratio", "give either parcel_diameter or parcel_ratio, not both");
+  const Range at_least_one = Range::closed(1.0, std::numeric_limits<double>::infinity());
+  std::vector<double> ratios;
+  if (t.is_array("parcel_ratio")) {
+    ratios = t.number_list("parcel_ratio", {}, at_least_one);
+    if (classes == 0 && ratios.size() != 1)
+      t.fail("parcel_ratio",
+             "a list of ratios needs [particles.size_distribution] (one per size class)");
+    if (classes > 0 && ratios.size() != 1 && ratios.size() != classes)
+      t.fail("parcel_ratio", fmt::format("has {} values for {} size classes: give one number, or "
+                                         "one per class",
+                                         ratios.size(), classes));
+  } else {
+    ratios.push_back(t.number("parcel_ratio", 1.0, at_least_one));
+  }
+  if (KeyFact* f = t.recorded_fact("parcel_ratio"))
+    *f = KeyFact{"number or list of numbers", "none (particles.parcel_diameter)",
+                 at_least_one.describe() + " (a parcel holds whole particles)"};
+  return ratios;
 }
 
 LayerArrangement parse_arrangement(TableReader& lt) {
@@ -121,8 +162,9 @@ bool agrees_with_floor(double y, const LayerFloor& floor) {
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                      const BoundaryConfig& boundary, bool larger_than_cells) {
   t.expect_keys({"enabled", "diameter", "density", "heat_capacity", "temperature",
-                 "parcel_diameter", "layer", "real_per_parcel", "contact", "wall_contact",
-                 "courant", "skin", "fast_skin_substeps", "gravity", "g", "size_distribution"});
+                 "parcel_diameter", "parcel_ratio", "layer", "real_per_parcel", "contact",
+                 "wall_contact", "cohesion", "courant", "skin", "fast_skin_substeps", "gravity",
+                 "g", "size_distribution"});
   dem.enabled = t.boolean("enabled", t.present());
   if (KeyFact* f = t.recorded_fact("enabled")) f->fallback = "true when [particles] is present";
   if (!dem.enabled) {
@@ -158,18 +200,40 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   dem.initial_temperature = t.number("temperature", dem.initial_temperature, Range::positive());
   check_plausible_temperature(t, "temperature", dem.initial_temperature);
   const bool parcel_diameter_given = t.has("parcel_diameter");
-  dem.parcel_diameter =
-      poly ? t.derived_number(
-                 "parcel_diameter", dist.classes.back().diameter,
-                 "particles.size_distribution (its largest class: no coarse graining of it)",
-                 Range::positive())
-           : t.derived_number("parcel_diameter", dem.particle_diameter,
-                              "particles.diameter (no coarse graining)", Range::positive());
+  // Coarse graining by a ratio: each class's parcels are ratio x its particles wide.
+  const std::vector<double> ratios = parse_parcel_ratios(t, dist.classes.size());
+  const bool class_parcels = poly && !ratios.empty();
+  if (class_parcels) {
+    double largest = 0.0;
+    for (std::size_t k = 0; k < dem.size_classes.size(); ++k) {
+      SizeClass& c = dem.size_classes[k];
+      c.parcel_diameter = ratios[ratios.size() == 1 ? 0 : k] * c.diameter;
+      largest = std::max(largest, c.parcel_diameter);
+    }
+    dem.parcel_diameter = t.derived_number(
+        "parcel_diameter", largest,
+        "particles.parcel_ratio (the largest class's parcels; each class has its own)",
+        Range::positive());
+  } else if (!ratios.empty()) {
+    dem.parcel_diameter =
+        t.derived_number("parcel_diameter", ratios[0] * dem.particle_diameter,
+                         "particles.parcel_ratio x particles.diameter", Range::positive());
+  } else {
+    dem.parcel_diameter =
+        poly ? t.derived_number(
+                   "parcel_diameter", dist.classes.back().diameter,
+                   "particles.size_distribution (its largest class: no coarse graining of it)",
+                   Range::positive())
+             : t.derived_number("parcel_diameter", dem.particle_diameter,
+                                "particles.diameter (no coarse graining)", Range::positive());
+  }
   if (dem.parcel_diameter < dem.particle_diameter) {
     t.fail("parcel_diameter", "must be at least the particle diameter (n_xy >= 1, eq. 11)");
   }
   // The key a user changes to get smaller parcels (the diameter unless coarse graining is set).
-  const char* size_key = parcel_diameter_given ? "parcel_diameter" : "diameter";
+  const char* size_key = parcel_diameter_given ? "parcel_diameter"
+                         : ratios.empty()      ? "diameter"
+                                               : "parcel_ratio";
 
   TableReader lt = t.table("layer");
   lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "thickness", "arrangement", "settle", "seed",
@@ -206,7 +270,18 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   // plane's fraction instead, (pi D^2/4) / V_p (15,000 /m for 100 um).
   const double area = (L.x_max - L.x_min) * (L.y_max - L.y_min);
   double derived = 0.0;
-  double planned = 0.0;  // a generated layer's planned parcel count
+  double planned = 0.0;              // a generated layer's planned parcel count
+  std::vector<double> class_counts;  // parcels per class: each class's real count
+  if (!ratios.empty() && L.arrangement == LayerArrangement::File)
+    t.fail("parcel_ratio",
+           "not used with arrangement = \"file\": the file gives each parcel's diameter");
+  if (class_parcels && L.arrangement != LayerArrangement::Columnar) {
+    t.fail("parcel_ratio",
+           fmt::format("with [particles.size_distribution] each class has parcels of its own "
+                       "size, packed in columns of one class each: set "
+                       "particles.layer.arrangement = \"columnar\" (not \"{}\")",
+                       layer_arrangement_name(L.arrangement)));
+  }
   if (L.arrangement == LayerArrangement::File) {
     if (poly) {
       t.fail("size_distribution",
@@ -220,12 +295,14 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     }
     const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
     note_volume_fraction_default(lt);
-    const ParcelFileLimits limits{
-        grid.x.start,          grid.x.end,
-        grid.y.start,          grid.y.end,
-        dem.particle_diameter,
-        larger_than_cells ? std::numeric_limits<double>::infinity()
-                          : min_cell_width(grid) * (1.0 + kCellTolerance)};
+    const ParcelFileLimits limits{grid.x.start,
+                                  grid.x.end,
+                                  grid.y.start,
+                                  grid.y.end,
+                                  dem.particle_diameter,
+                                  larger_than_cells
+                                      ? std::numeric_limits<double>::infinity()
+                                      : min_cell_width(grid) * (1.0 + kCellTolerance)};
     const PlacedParcel defaults{0.0, 0.0, dem.parcel_diameter,    0.0,
                                 0.0, 0.0, dem.initial_temperature};
     dem.layer_parcels = read_parcel_file(lt.path("file"), defaults, limits);
@@ -246,12 +323,13 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     const double cell =
         larger_than_cells ? std::numeric_limits<double>::infinity() : min_cell_width(grid);
     if (dem.parcel_diameter > depth || dem.parcel_diameter > cell * (1.0 + kCellTolerance)) {
-      t.fail(size_key, fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m); lengths are "
-                                   "in metres (40 um is 40e-6)",
-                                   dem.parcel_diameter,
-                                   dem.parcel_diameter > depth ? "the layer's depth"
-                                                               : "the smallest grid cell",
-                                   dem.parcel_diameter > depth ? depth : cell));
+      t.fail(
+          size_key,
+          fmt::format("parcels of {:.9g} m are larger than {} ({:.9g} m){}", dem.parcel_diameter,
+                      dem.parcel_diameter > depth ? "the layer's depth" : "the smallest grid cell",
+                      dem.parcel_diameter > depth ? depth : cell,
+                      ratios.empty() ? "; lengths are in metres (40 um is 40e-6)"
+                                     : ": a smaller parcel ratio"));
     }
     // Above 0.9 no 2-D disc packing exists (hexagonal: 0.9069); the lattices need < ~0.78.
     L.volume_fraction = lt.number("volume_fraction", L.volume_fraction, Range::open(0.0, 0.9));
@@ -260,7 +338,12 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
         lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
     // Before the lattice is planned (it is sized by the parcel count): the parcels must fit
     // the machine.
-    const double parcels = L.volume_fraction * area / disc_area(dem.parcel_diameter);
+    double parcels = L.volume_fraction * area / disc_area(dem.parcel_diameter);
+    if (class_parcels) {
+      parcels = 0.0;
+      for (const SizeClass& c : dem.size_classes)
+        parcels += c.mass_fraction * L.volume_fraction * area / disc_area(c.parcel_diameter);
+    }
     const std::string shortfall = memory_shortfall(0.0, parcels);
     if (!shortfall.empty() || parcels > static_cast<double>(kMaxParcels)) {
       t.fail(
@@ -271,28 +354,44 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                                                       static_cast<double>(kMaxParcels))
                                         : shortfall));
     }
-    LayerLattice plan;
-    try {
-      plan = plan_layer(L, dem.parcel_diameter);
-    } catch (const std::invalid_argument& e) {
-      lt.fail("volume_fraction", e.what());
-    }
-    // A looser top: the top rows keep a share of their sites (docs/dem.md, "A looser top").
-    L.loose_top_rows =
-        static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows, "the layer's rows"));
-    L.loose_top_fill = lt.number("loose_top_fill", 1.0, Range::open_closed(0.0, 1.0));
-    if (L.loose_top_fill != 1.0 && L.loose_top_rows == 0) {
-      lt.fail("loose_top_fill", "needs loose_top_rows > 0 (the rows it thins)");
-    }
-    // From the plan's count: the rows below a loose top hold volume_fraction.
-    planned = static_cast<double>(plan.n_parcels);
-    derived = derived_real_per_parcel(L.volume_fraction, area, planned, dem.particle_diameter);
-    if (poly) {
-      const std::int64_t placed =
-          L.loose_top_rows > 0
-              ? static_cast<std::int64_t>(generate_layer(L, dem.parcel_diameter).x.size())
-              : plan.n_parcels;
-      check_class_counts(dist, sd, placed);
+    if (class_parcels) {
+      // Columns of one class each: no lattice, no loose top (class_columns.hpp).
+      for (const char* key : {"loose_top_rows", "loose_top_fill"}) {
+        if (lt.has(key))
+          lt.fail(key,
+                  "not used with particles.parcel_ratio and a size distribution (columns "
+                  "of one class each)");
+      }
+      try {
+        class_counts = plan_class_columns(dem).real_per_parcel;
+      } catch (const ClassColumnsError& e) {
+        if (e.too_dense) lt.fail("volume_fraction", e.what());
+        t.fail("parcel_ratio", e.what());
+      }
+    } else {
+      LayerLattice plan;
+      try {
+        plan = plan_layer(L, dem.parcel_diameter);
+      } catch (const std::invalid_argument& e) {
+        lt.fail("volume_fraction", e.what());
+      }
+      // A looser top: the top rows keep a share of their sites (docs/dem.md, "A looser top").
+      L.loose_top_rows =
+          static_cast<int>(lt.integer("loose_top_rows", 0, 0, plan.rows, "the layer's rows"));
+      L.loose_top_fill = lt.number("loose_top_fill", 1.0, Range::open_closed(0.0, 1.0));
+      if (L.loose_top_fill != 1.0 && L.loose_top_rows == 0) {
+        lt.fail("loose_top_fill", "needs loose_top_rows > 0 (the rows it thins)");
+      }
+      // From the plan's count: the rows below a loose top hold volume_fraction.
+      planned = static_cast<double>(plan.n_parcels);
+      derived = derived_real_per_parcel(L.volume_fraction, area, planned, dem.particle_diameter);
+      if (poly) {
+        const std::int64_t placed =
+            L.loose_top_rows > 0
+                ? static_cast<std::int64_t>(generate_layer(L, dem.parcel_diameter).x.size())
+                : plan.n_parcels;
+        check_class_counts(dist, sd, placed);
+      }
     }
   }
   lt.finish();
@@ -305,13 +404,18 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
     }
     std::string per_class = "[";
     for (std::size_t k = 0; k < dist.classes.size(); ++k) {
-      per_class += fmt::format(
-          "{}{:.17g}", k ? ", " : "",
-          derived_real_per_parcel(L.volume_fraction, area, planned, dist.classes[k].diameter));
+      per_class +=
+          fmt::format("{}{:.17g}", k ? ", " : "",
+                      class_parcels ? class_counts[k]
+                                    : derived_real_per_parcel(L.volume_fraction, area, planned,
+                                                              dist.classes[k].diameter));
     }
     t.note_derived(
         "real_per_parcel", per_class + "]",
-        "one per size class: the layer's volume_fraction shared equally by its parcels (§4)");
+        class_parcels
+            ? "one per size class: its columns hold the layer's volume_fraction (docs/dem.md, "
+              "\"Parcels per class\")"
+            : "one per size class: the layer's volume_fraction shared equally by its parcels (§4)");
     dem.real_per_parcel = 0.0;  // derived per class by the layer generator
   } else {
     dem.real_per_parcel =
@@ -326,6 +430,7 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
   dem.contact = parse_contact(t.table("contact", true), dem.contact, 0.5 * particle_mass);
   dem.wall_contact =
       parse_contact(t.table("wall_contact"), dem.contact, particle_mass, "particles.contact");
+  parse_cohesion(t.table("cohesion"), dem);
 
   // The parcels live in the gas domain: its edges are walls for them, except where the
   // gas is periodic (then the parcels are periodic too). Parcels never leave the grid.

@@ -40,6 +40,8 @@ void parse_initial(TableReader t, InitialCondition& ic, const ThermoConfig& ther
 /// undisturbed flow over each particle, coupling.finite_size).
 void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
                      const BoundaryConfig& boundary, bool larger_than_cells = false);
+/// [particles.cohesion]: van der Waals cohesion per real pair (off without the table).
+void parse_cohesion(TableReader t, DemConfig& dem);
 void parse_coupling(TableReader t, CouplingConfig& c, const DemConfig& dem, const GridConfig& grid);
 void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
                   const GridConfig& grid);

@@ -95,6 +95,10 @@ constexpr SceneKeyDoc kDocs[] = {
     {"particles.temperature", "K", "the particles' temperature at t = 0"},
     {"particles.parcel_diameter", "m",
      "DEM parcel diameter n_xy d (coarse graining; at most the smallest cell)"},
+    {"particles.parcel_ratio", "1",
+     "parcel diameter over particle diameter (coarse graining): one number, or one per size "
+     "class; with a size distribution each class gets parcels of its own size, packed in "
+     "columns of one class each (columnar layers)"},
     {"particles.real_per_parcel", "1/m",
      "real particles per parcel per metre of span (masses are per metre of span)"},
     {"particles.courant", "1",
@@ -142,8 +146,29 @@ constexpr SceneKeyDoc kDocs[] = {
     {"particles.*.damping", "N s/m",
      "dashpot coefficient, normal and tangential (or give restitution)"},
     {"particles.*.restitution", "1",
-     "normal restitution coefficient of two particles of particles.diameter (a wall: of one); the "
-     "damping follows"},
+     "the material's normal restitution coefficient: every pair's dashpot follows from its "
+     "reduced mass, every parcel's at a wall from its particle's mass (the walls take the "
+     "particles' by default)"},
+    {"particles.cohesion", "",
+     "van der Waals cohesion per pair of real particles, held at its pull-off force while the "
+     "parcels touch (off without the table)"},
+    {"particles.cohesion.hamaker", "J",
+     "Hamaker constant A: pull-off force A R*/(6 s0^2) of a real pair (Hamaker 1937); about "
+     "5e-20 to 7e-20 J for organic solids, 6e-20 to 1e-19 J for quartz and mica "
+     "(Israelachvili 2011, ch. 13); 0: no cohesion"},
+    {"particles.cohesion.surface_energy", "J/m^2",
+     "surface energy gamma per surface instead of hamaker: pull-off 4 pi gamma R* (DMT), "
+     "A = 24 pi gamma s0^2"},
+    {"particles.cohesion.min_separation", "m",
+     "s0, the gap of surfaces in contact, where the force saturates (0.4 nm: Krupp 1967)"},
+    {"particles.cohesion.asperity_radius", "m",
+     "radius of Rumpf's surface asperity (Rumpf 1990): a rough surface's far weaker pull"},
+    {"particles.cohesion.cutoff", "m",
+     "largest surface gap with a force, the Hamaker tail A R*/(6 s^2) (0: only while the parcels "
+     "overlap)"},
+    {"particles.cohesion.wall_hamaker", "J", "Hamaker constant of a particle and a wall"},
+    {"particles.cohesion.wall_surface_energy", "J/m^2",
+     "surface energy of a particle and a wall instead of wall_hamaker"},
     {"particles.*.coulomb", "", "limit the tangential force to friction times the normal force"},
     {"particles.*.friction", "1", "Coulomb friction coefficient"},
     // [coupling]

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "solver/dem/coarse_graining.hpp"
+#include "solver/dem/contact_summary.hpp"
 #include "solver/gas/shock_relations.hpp"
 #include "solver/laws/contact.hpp"
 #include "solver/sim/simulation.hpp"
@@ -70,19 +71,19 @@ void gas_effects(const Scene& scene, std::vector<std::string>& e) {
 /// The particles' line: parcels, real particles and the contact law.
 std::string particles_line(const DemConfig& d, std::size_t parcels) {
   std::ostringstream s;
-  s << "particles: " << parcels << " DEM parcels of " << d.parcel_diameter * 1e6 << " um holding ";
+  s << "particles: " << parcels << " DEM parcels of "
+    << (has_class_parcels(d.size_classes) ? "up to " : "") << d.parcel_diameter * 1e6
+    << " um holding ";
   if (d.size_classes.empty()) {
     s << d.real_per_parcel << " real particles of " << d.particle_diameter * 1e6 << " um per metre";
   } else {
     s << "real particles of " << d.size_classes.size() << " size classes from "
       << d.size_classes.front().diameter * 1e6 << " to " << d.size_classes.back().diameter * 1e6
-      << " um (mass median " << d.particle_diameter * 1e6 << " um), the same solid volume each";
+      << " um (mass median " << d.particle_diameter * 1e6 << " um), "
+      << (has_class_parcels(d.size_classes) ? "each class in parcels of its own size"
+                                            : "the same solid volume each");
   }
-  s << "; spring-dashpot contacts (k_n " << d.contact.k_n << " N/m, k_t " << d.contact.k_t
-    << " N/m, h " << d.contact.damping << " N s/m: restitution "
-    << contact_restitution(0.5 * d.density * sphere_volume(d.particle_diameter), d.contact.k_n,
-                           d.contact.damping)
-    << " between two particles of " << d.particle_diameter * 1e6 << " um)";
+  s << "; spring-dashpot contacts (" << describe_contact_law(d) << ")";
   return s.str();
 }
 
@@ -98,6 +99,7 @@ std::vector<std::string> Simulation::enabled_effects() const {
   const auto& d = scene_.particles;
   const auto& c = scene_.coupling;
   e.push_back(particles_line(d, parcels_ ? parcels_->size() : 0));
+  if (const std::string coh = describe_cohesion(d); !coh.empty()) e.push_back(coh);
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"
                         : "coupling: one-way (gas does not feel the particles)");
   if (coupling_) {

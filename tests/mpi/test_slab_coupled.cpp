@@ -177,6 +177,48 @@ TEST(SlabCoupled, PolydisperseLayerOnTwoRanksMatchesOneRankBitForBit) {
   }
 }
 
+TEST(SlabCoupled, ClassParcelsRestitutionAndCohesionOnTwoRanksMatchOneRankBitForBit) {
+  ASSERT_EQ(world().size(), 2) << "run under mpirun -np 2";
+  // The reduced quickstart with three log-normal classes in parcels of their own sizes
+  // (parcel_ratio), the restitution per pair and van der Waals cohesion with a tail across
+  // gaps (its reach widens the rank copies).
+  const std::string path = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml";
+  std::string text = read_input_file(path, "scene");
+  for (const char* line : {"diameter = 100e-6", "damping = 1.0e-4"}) {
+    const std::size_t at = text.find(line);
+    ASSERT_NE(at, std::string::npos) << line;
+    text.erase(at, text.find('\n', at) - at);
+  }
+  const Scene scene = parse_scene(
+      text, path,
+      {"grid.x.start=-0.010", "grid.x.end=0.020", "grid.x.cells_below=10", "grid.y.end=0.008",
+       "grid.y.uniform_end=0.006", "grid.y.cells_above=4", "particles.layer.x_max=0.015",
+       "particles.size_distribution.median=70e-6", "particles.size_distribution.geometric_std=1.3",
+       "particles.size_distribution.classes=3", "particles.parcel_ratio=[2, 1.5, 1.2]",
+       "particles.contact.restitution=0.9", "particles.cohesion.hamaker=1e-19",
+       "particles.cohesion.cutoff=2e-6"});
+  ASSERT_TRUE(has_class_parcels(scene.particles.size_classes));
+  constexpr int kSteps = 120;
+  omp_set_num_threads(1);
+  Simulation two(scene, &world());
+  ASSERT_TRUE(two.decomposed());
+  advance_steps(two, kSteps);
+  EXPECT_GT(two.parcels()->size(), two.parcels()->owned_count());  // rank copies
+  const ParcelSystem& p = *two.parcels();
+  double moved[3] = {0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto c = static_cast<std::size_t>(p.size_class[i]);
+    moved[c] = std::max(moved[c], std::hypot(p.x[i] - p.x_initial[i], p.y[i] - p.y_initial[i]));
+  }
+  for (double& m : moved) m = -world().min(-m);
+  for (double m : moved) EXPECT_GT(m, 1e-7);
+  for (int threads : {1, 2}) {
+    std::string names;
+    EXPECT_EQ(differences(scene, kSteps, two, threads, names), 0)
+        << threads << " thread(s): " << names;
+  }
+}
+
 TEST(SlabCoupled, CutsThatFollowTheWorkChangeNothing) {
   // The cuts recomputed every 10 steps from the cells and parcels each column costs: the
   // parcels move to their new ranks with their contact lists, alpha_p with the gas. The

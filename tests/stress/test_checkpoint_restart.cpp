@@ -166,6 +166,25 @@ TEST(CheckpointRestart, PolydisperseBoxContinuesBitwise) {
                            120, 300, true);
 }
 
+TEST(CheckpointRestart, ClassParcelsRestitutionAndCohesionContinueBitwise) {
+  // Three classes in parcels of their own sizes (columns of one class), the restitution per
+  // pair and van der Waals cohesion with a tail across gaps: the parcel sizes, counts and the
+  // pairs' dashpots come back from the checkpoint, and the run continues bit for bit.
+  std::string box = kBox;
+  for (const char* line : {"\ndiameter = 100e-6", "\ndamping = 1.0e-4"}) {
+    const std::size_t at = box.find(line);
+    ASSERT_NE(at, std::string::npos) << line;
+    box.erase(at + 1, box.find('\n', at + 1) - at);
+  }
+  box.replace(box.find("volume_fraction = 0.35"), 22,
+              "volume_fraction = 0.35\narrangement = \"columnar\"");
+  box.replace(box.find("k_t = 100.0"), 11, "k_t = 100.0\nrestitution = 0.8");
+  box.replace(box.find("temperature = 300.0"), 19, "temperature = 300.0\nparcel_ratio = [3, 2, 1.5]");
+  check_restart_is_bitwise(box + "[particles.size_distribution]\nmedian = 60e-6\ngeometric_std = 1.5\n"
+                                 "classes = 3\n[particles.cohesion]\nhamaker = 1e-20\ncutoff = 1e-6\n",
+                           120, 300, true);
+}
+
 TEST(CheckpointRestart, GasOnlyShockContinuesBitwise) {
   check_restart_is_bitwise(kShock, 40, 100, false);
 }

@@ -227,6 +227,29 @@ TEST(Determinism, ReducedPaperSceneIsBitwiseIdenticalOnOneAndTwoThreads) {
   expect_same_on_one_and_two_threads(load_scene(paper, kReducedPaper));
 }
 
+TEST(Determinism, ClassParcelsRestitutionAndCohesionAreBitwiseIdenticalOnOneAndTwoThreads) {
+  // The reduced paper scene with three log-normal classes in parcels of their own sizes
+  // (parcel_ratio), the restitution per pair and van der Waals cohesion with a tail (the
+  // touching columns feel it from the first step); above 4,096 parcels: the threaded DEM.
+  const std::string paper = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/paper/vertical_shock.toml";
+  std::string text = read_input_file(paper, "scene");
+  for (const char* line : {"\ndiameter = 100e-6", "\nparcel_diameter = 100e-6", "\ndamping = 1.0e-4"}) {
+    const std::size_t at = text.find(line);
+    ASSERT_NE(at, std::string::npos) << line;
+    text.erase(at + 1, text.find('\n', at + 1) - at);
+  }
+  std::vector<std::string> overrides = kReducedPaper;
+  for (const char* o :
+       {"particles.size_distribution.median=70e-6", "particles.size_distribution.geometric_std=1.3",
+        "particles.size_distribution.classes=3", "particles.parcel_ratio=1.5",
+        "particles.contact.restitution=0.9", "particles.cohesion.hamaker=1e-19",
+        "particles.cohesion.cutoff=1e-6"})
+    overrides.emplace_back(o);
+  const Scene scene = parse_scene(text, paper, overrides);
+  ASSERT_TRUE(has_class_parcels(scene.particles.size_classes));
+  expect_same_on_one_and_two_threads(scene);
+}
+
 TEST(Determinism, PolydisperseReducedPaperSceneIsBitwiseIdenticalOnOneAndTwoThreads) {
   // The same scene with three log-normal classes in its 100 um parcels (its particles.diameter
   // line dropped: the distribution derives it); above 4,096 parcels, so the threaded DEM runs.

@@ -250,11 +250,22 @@ TEST(Cli, MaterialAndLayerMistakesNameTheKeyAndTheBounds) {
   write_file(dir / "restitution.toml", no_damping + "\n");
   r = run_cli("info " + (dir / "restitution.toml").string() + " --set particles.contact.restitution=0.9");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("restitution 0.9 between two particles of 100 um"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("restitution 0.9 for every pair"), std::string::npos) << r.output;
   // h = -2 ln e sqrt(m_eff k_n) / sqrt(pi^2 + ln^2 e), m_eff = rho pi d^3 / 12.
   const double m_eff = 980.0 * M_PI * 1e-12 / 12.0, l = std::log(0.9);
   const double h = -2.0 * l * std::sqrt(m_eff * 5e4) / std::sqrt(M_PI * M_PI + l * l);
   EXPECT_NE(r.output.find(fmt::format("particles.contact.damping = {}", h)), std::string::npos) << h << "\n" << r.output;
+  // Cohesion: the effect list names it with its pull-off force and Bond number; a negative
+  // Hamaker constant is refused naming the key.
+  r = run_cli("info " + quickstart + " --set particles.cohesion.hamaker=1e-19");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // F_c = A R* / (6 s0^2) with R* = 25 um: 2.604e-6 N; Bond number F_c / (m g) = 517 for 100 um, 980 kg/m^3.
+  EXPECT_NE(r.output.find("cohesion: van der Waals per real pair (Hamaker 1e-19 J"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("pull-off force 2.604e-06 N between two particles of 100 um (Bond number F_c/(m g) 517.3 at g = 9.81"),
+            std::string::npos)
+      << r.output;
+  r = run_cli("run " + quickstart + " --out " + (dir / "d").string() + " --set particles.cohesion.hamaker=-1e-19");
+  expect_bad_input(r, "particles.cohesion.hamaker", dir / "d", "negative Hamaker constant");
   fs::remove_all(dir);
 }
 
