@@ -375,5 +375,43 @@ TEST_F(AnalysisScripts, CloudConvergenceComparesRunsThatDifferInOneSetting) {
   fs::remove_all(dir);
 }
 
+TEST_F(AnalysisScripts, ClosureSensitivityTabulatesTwoRunsAndTheirDifference) {
+  // Two runs of one scene: 4 and 6 g/m lifted (+50 %), the station at 30 mm 0.5 and 0.25 mm
+  // (-50 %), the first lifted dust 50 and 75 mm behind the shock (+50 %). The row of a time
+  // past --time is not read.
+  const auto dir = fresh_dir("closure_sensitivity");
+  const auto write_run = [&](const std::string& name, double lifted, double h30, double behind) {
+    const auto series = dir / name / "series";
+    fs::create_directories(series);
+    std::ofstream(series / "dust_cloud.csv")
+        << "time_s,lifted_mass_kg_per_m,lifted_share_1,shock_x_m,first_lifted_behind_shock_m\n"
+        << "0,0,0,0,nan\n"
+        << "0.0003," << lifted << "," << lifted / 0.1 << ",0.144," << behind << "\n"
+        << "0.0004,1,10,0.2,0.01\n";
+    std::ofstream(series / "surface_height_stations.csv")
+        << "time_s,height_at_x0p03_m\n0,0\n0.0003," << h30 << "\n0.0004,1\n";
+  };
+  write_run("a", 4e-3, 0.5e-3, 0.050);
+  write_run("b", 6e-3, 0.25e-3, 0.075);
+  const auto [status, output] =
+      run(script("closure_sensitivity.py") + " first=" + (dir / "a").string() +
+          " second=" + (dir / "b").string() + " --time 3e-4");
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_NE(output.find("At t = 0.3 ms (shock at x = 144 mm)"), std::string::npos) << output;
+  EXPECT_NE(output.find("| lifted mass (g/m) | 4 | 6 | +50 % |"), std::string::npos) << output;
+  EXPECT_NE(output.find("| surface at the station x = 30 mm (mm) | 0.5 | 0.25 | -50 % |"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("| first lifted dust behind the shock (mm) | 50 | 75 | +50 % |"),
+            std::string::npos)
+      << output;
+  // A folder that is not a run is named.
+  const auto [bad, message] =
+      run(script("closure_sensitivity.py") + " x=" + (dir / "missing").string());
+  EXPECT_NE(bad, 0);
+  EXPECT_NE(message.find("no series/dust_cloud.csv"), std::string::npos) << message;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace dustlift
