@@ -326,7 +326,7 @@ def write_markdown(a, sets, scores, exp, figrel, runs_count):
       "within the error bar (upstream, downstream), and the RMS of |ours − measured| / bar over all of them. "
       "Added mass / pressure: the added-mass force summed over the particles and the outputs after 20 µs (the "
       "shock has crossed the curtain by 3.5 µs) against the pressure-gradient force summed likewise, and in "
-      "brackets the largest ratio at one output. (What each setting costs: docs/accuracy-cost.md.)")
+      "brackets the largest ratio at one output. (What each setting costs: [accuracy-cost.md](accuracy-cost.md).)")
     w("")
     w("| setting | what it switches | upstream in bars | downstream in bars | RMS (bars) | worst (bars) | "
       "added mass / pressure |")
