@@ -63,7 +63,6 @@ def numbers(run, t):
     surface = c.get("surface", {})
     out["surface band: contact up, peak (µN)"] = surface.get("contact_up_10us_uN", math.nan)
     out["surface band: drag, most downward (µN)"] = surface.get("drag_down_10us_uN", math.nan)
-    out["_time_ms"] = t * 1e3
     out["_shock_mm"] = shock * 1e3
     return out
 
