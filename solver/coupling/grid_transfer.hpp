@@ -124,7 +124,7 @@ class InterpolationBatch {
   void push(const InterpolationStencil& st) { set(count_++, st); }
   /// Pushes the stencils of points (x[q], y[q]), q < n (at most N in all): the same stencils
   /// as interpolation_stencil, made in one vector loop.
-  void push_points(const double* __restrict x, const double* __restrict y, std::size_t n, InterpolationRule rule) {
+  [[gnu::always_inline]] void push_points(const double* __restrict x, const double* __restrict y, std::size_t n, InterpolationRule rule) {
     const AxisView ax = grid_->x().view(), ay = grid_->y().view();
     const std::int32_t ng = grid_->ghosts(), row = row_, shift = shift_;
     const std::size_t q0 = count_;
