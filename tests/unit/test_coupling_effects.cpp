@@ -206,6 +206,29 @@ TEST(CouplingEffects, TheListDecidesWhatIsReadAndWhichColumnsExist) {
   EXPECT_TRUE(columns_of(forcing_fixture::no_effects()).empty());
 }
 
+TEST(CouplingEffects, EveryUnitOfTheBuildIsMadeWhenOnInTable1sOrder) {
+  // The build lists every effect unit (effect_units.hpp); the list makes each one whose key is
+  // on, ordered by its kPosition: drag, Magnus, pressure, added mass, torque, heat (Table 1's
+  // order, which is also the order the sub-step adds the forces in).
+  CouplingConfig c;
+  c.added_mass = true;
+  const std::vector<std::string> d = CouplingEffects(c).descriptions();
+  const std::vector<std::string> starts{"drag:",
+                                        "Magnus lift",
+                                        "pressure-gradient force",
+                                        "added mass",
+                                        "rotational friction torque",
+                                        "heat transfer"};
+  ASSERT_EQ(d.size(), starts.size());
+  for (std::size_t k = 0; k < d.size(); ++k) EXPECT_EQ(d[k].rfind(starts[k], 0), 0u) << d[k];
+  c.magnus = false;
+  c.heat_transfer = false;
+  const std::vector<std::string> some = CouplingEffects(c).descriptions();
+  ASSERT_EQ(some.size(), 4u);
+  EXPECT_EQ(some[1].rfind("pressure-gradient force", 0), 0u) << some[1];
+  EXPECT_EQ(some[3].rfind("rotational friction torque", 0), 0u) << some[3];
+}
+
 TEST(CouplingEffects, TheDemSubstepAppliesTheEffectsSubstepLaws) {
   // One forced sub-step of a single parcel: the force parts it stores are the effects'
   // sub-step pieces at the parcel's state when the sub-step began.

@@ -9,16 +9,18 @@
 #include <string>
 
 #include "solver/core/vec2.hpp"
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect.hpp"
 #include "solver/dem/forced_euler.hpp"
 #include "solver/laws/added_mass.hpp"
 
 namespace dustlift {
 
-struct CouplingConfig;
-
 class AddedMassEffect final : public CouplingEffect {
  public:
+  /// Where its functor runs in the DEM's forced sub-step (Table 1's order; effect_list.cpp).
+  static constexpr int kPosition = 4;
+  static bool active(const CouplingConfig& c) { return c.added_mass; }
   explicit AddedMassEffect(const CouplingConfig& c);
   std::string description() const override;
   GasReads reads() const override;

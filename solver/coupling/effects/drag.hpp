@@ -5,16 +5,18 @@
 #include <vector>
 
 #include "solver/core/vec2.hpp"
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect.hpp"
 #include "solver/dem/forced_euler.hpp"
 #include "solver/laws/drag.hpp"
 
 namespace dustlift {
 
-struct CouplingConfig;
-
 class DragEffect final : public BatchedEffect<DragEffect>, public StiffColumns {
  public:
+  /// Where its functor runs in the DEM's forced sub-step (Table 1's order; effect_list.cpp).
+  static constexpr int kPosition = 1;
+  static bool active(const CouplingConfig& c) { return c.drag; }
   explicit DragEffect(const CouplingConfig& c);
   std::string description() const override;
   std::vector<std::string> validity(const FlowEnvelope& e) const override;

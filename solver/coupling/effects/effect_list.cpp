@@ -1,27 +1,59 @@
 #include "solver/coupling/effects/effect_list.hpp"
 
+#include <algorithm>
 #include <array>
 #include <tuple>
 #include <utility>
 
 #include "solver/coupling/coupling_config.hpp"
-#include "solver/coupling/effects/added_mass.hpp"
-#include "solver/coupling/effects/drag.hpp"
-#include "solver/coupling/effects/heat_transfer.hpp"
-#include "solver/coupling/effects/magnus.hpp"
-#include "solver/coupling/effects/pressure_force.hpp"
-#include "solver/coupling/effects/rotation_torque.hpp"
+#include "solver/coupling/effects/effect_units.hpp"
 #include "solver/dem/parcel_system.hpp"
 
 namespace dustlift {
 namespace {
 
-/// Every effect with a sub-step functor, in the order the sub-step applies them (Table 1's).
-/// A new such effect is one more type here; its unit says the rest.
+/// The units' indices in EffectUnits, ordered by their kPosition.
 template <class... E>
-struct TypeList {};
-using SubstepEffectTypes = TypeList<DragEffect, MagnusEffect, PressureForceEffect, AddedMassEffect,
-                                    RotationTorqueEffect, HeatTransferEffect>;
+constexpr std::array<std::size_t, sizeof...(E)> by_position() {
+  constexpr std::array<int, sizeof...(E)> position{E::kPosition...};
+  std::array<std::size_t, sizeof...(E)> order{};
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return position[a] < position[b]; });
+  return order;
+}
+
+template <class... E>
+constexpr bool distinct_positions() {
+  constexpr std::array<int, sizeof...(E)> position{E::kPosition...};
+  for (std::size_t a = 0; a < position.size(); ++a)
+    for (std::size_t b = a + 1; b < position.size(); ++b)
+      if (position[a] == position[b]) return false;
+  return true;
+}
+
+template <class List, class Indices>
+struct Ordered;
+template <class... E, std::size_t... I>
+struct Ordered<EffectTypeList<E...>, std::index_sequence<I...>> {
+  static_assert(distinct_positions<E...>(), "two effect units share a kPosition");
+  static constexpr auto order = by_position<E...>();
+  using type = EffectTypeList<std::tuple_element_t<order[I], std::tuple<E...>>...>;
+};
+template <class... E>
+auto ordered(EffectTypeList<E...>) ->
+    typename Ordered<EffectTypeList<E...>, std::index_sequence_for<E...>>::type;
+
+/// Every effect unit in the order the sub-step applies them (their kPosition: Table 1's). A new
+/// effect is its unit: the build lists every unit (effect_units.hpp).
+using SubstepEffectTypes = decltype(ordered(EffectUnits{}));
+
+/// The scene's active effects, in sub-step order (which is also the order of their columns).
+template <class... E>
+void make_active(EffectTypeList<E...>, const CouplingConfig& c,
+                 std::vector<std::unique_ptr<CouplingEffect>>& effects) {
+  ((E::active(c) ? effects.push_back(std::make_unique<E>(c)) : void()), ...);
+}
 
 /// Writes Omega_g - w of the parcel when the force parts are stored (band filters read it).
 struct RelativeRotation : SubstepRoles, StoresValue {
@@ -71,7 +103,7 @@ class ComposedForcing final : public ParcelForcing {
 
 template <class... All>
 std::shared_ptr<const ParcelForcing> compose(
-    TypeList<All...>, const std::vector<std::unique_ptr<CouplingEffect>>& effects,
+    EffectTypeList<All...>, const std::vector<std::unique_ptr<CouplingEffect>>& effects,
     const CouplingEffects::SubstepColumns& columns) {
   std::array<const CouplingEffect*, sizeof...(All)> active{};
   std::size_t k = 0;
@@ -88,12 +120,7 @@ std::shared_ptr<const ParcelForcing> compose(
 }  // namespace
 
 CouplingEffects::CouplingEffects(const CouplingConfig& c) {
-  if (c.drag) effects_.push_back(std::make_unique<DragEffect>(c));
-  if (c.magnus) effects_.push_back(std::make_unique<MagnusEffect>(c));
-  if (c.pressure_force) effects_.push_back(std::make_unique<PressureForceEffect>());
-  if (c.added_mass) effects_.push_back(std::make_unique<AddedMassEffect>(c));
-  if (c.rotation_torque) effects_.push_back(std::make_unique<RotationTorqueEffect>(c));
-  if (c.heat_transfer) effects_.push_back(std::make_unique<HeatTransferEffect>());
+  make_active(SubstepEffectTypes{}, c, effects_);
   for (const auto& e : effects_) reads_ |= e->reads();
 }
 

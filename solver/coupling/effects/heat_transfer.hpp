@@ -4,6 +4,7 @@
 // the gas (eq. 15) and made implicit where it is stiff.
 #include <string>
 
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect.hpp"
 #include "solver/dem/forced_euler.hpp"
 #include "solver/laws/heat_transfer.hpp"
@@ -12,6 +13,11 @@ namespace dustlift {
 
 class HeatTransferEffect final : public BatchedEffect<HeatTransferEffect>, public StiffColumns {
  public:
+  /// Where its functor runs in the DEM's forced sub-step (Table 1's order; effect_list.cpp).
+  static constexpr int kPosition = 6;
+  static bool active(const CouplingConfig& c) { return c.heat_transfer; }
+  HeatTransferEffect() = default;
+  explicit HeatTransferEffect(const CouplingConfig&) {}
   std::string description() const override {
     return "heat transfer (Ranz-Marshall) and particle temperature";
   }

@@ -5,16 +5,18 @@
 #include <string>
 
 #include "solver/core/vec2.hpp"
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect.hpp"
 #include "solver/dem/forced_euler.hpp"
 #include "solver/laws/magnus.hpp"
 
 namespace dustlift {
 
-struct CouplingConfig;
-
 class MagnusEffect final : public BatchedEffect<MagnusEffect> {
  public:
+  /// Where its functor runs in the DEM's forced sub-step (Table 1's order; effect_list.cpp).
+  static constexpr int kPosition = 2;
+  static bool active(const CouplingConfig& c) { return c.magnus; }
   explicit MagnusEffect(const CouplingConfig& c);
   std::string description() const override;
   GasReads reads() const override { return {.rotation = true}; }

@@ -4,6 +4,7 @@
 // it is. Not exchanged: the gas feels it through alpha_g grad p.
 #include <string>
 
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect.hpp"
 #include "solver/dem/forced_euler.hpp"
 #include "solver/laws/pressure_force.hpp"
@@ -12,6 +13,11 @@ namespace dustlift {
 
 class PressureForceEffect final : public BatchedEffect<PressureForceEffect> {
  public:
+  /// Where its functor runs in the DEM's forced sub-step (Table 1's order; effect_list.cpp).
+  static constexpr int kPosition = 3;
+  static bool active(const CouplingConfig& c) { return c.pressure_force; }
+  PressureForceEffect() = default;
+  explicit PressureForceEffect(const CouplingConfig&) {}
   std::string description() const override { return "pressure-gradient force -V_p grad p"; }
   GasReads reads() const override { return {.pressure_gradient = true}; }
   void attach(ParcelTable& t) override {

@@ -4,6 +4,7 @@
 // rotation (laws/rotation_torque.hpp). The gas does not feel it (the paper has no counterpart).
 #include <string>
 
+#include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect.hpp"
 #include "solver/dem/forced_euler.hpp"
 #include "solver/laws/magnus.hpp"
@@ -11,10 +12,11 @@
 
 namespace dustlift {
 
-struct CouplingConfig;
-
 class RotationTorqueEffect final : public BatchedEffect<RotationTorqueEffect> {
  public:
+  /// Where its functor runs in the DEM's forced sub-step (Table 1's order; effect_list.cpp).
+  static constexpr int kPosition = 5;
+  static bool active(const CouplingConfig& c) { return c.rotation_torque; }
   explicit RotationTorqueEffect(const CouplingConfig& c);
   std::string description() const override;
   GasReads reads() const override { return {.rotation = true}; }
