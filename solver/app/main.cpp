@@ -142,8 +142,8 @@ int run_command(std::string scene_path, const std::string& restart_path, std::st
 struct CommandLine {
   std::string scene_path, out_dir, restart_path, study_path;
   std::vector<std::string> overrides, varies, info_scenes;
-  int threads = 0;
-  bool overwrite = false, keys = false;
+  int threads = 0, jobs = 1;
+  bool overwrite = false, keys = false, resume = false;
   SweepDefinition sweep;  ///< --stations and --lift-threshold
   CLI::App* run = nullptr;
   CLI::App* sweep_cmd = nullptr;
@@ -200,8 +200,18 @@ void add_sweep_command(CLI::App& app, CommandLine& c) {
                    fmt::format("m above the layer top that counts as lifted (default {:g})",
                                kDefaultLiftThreshold))
       ->check(CLI::PositiveNumber);
-  c.sweep_cmd->add_option("--threads,-t", c.threads, "OpenMP threads per run (default: all cores)")
+  c.sweep_cmd
+      ->add_option("--threads,-t", c.threads,
+                   "OpenMP threads per run (default: all cores, shared among the --jobs)")
       ->check(CLI::Range(1, 1024));
+  c.sweep_cmd
+      ->add_option("--jobs,-j", c.jobs,
+                   "runs side by side, each a process with its share of the threads (default 1)")
+      ->check(CLI::Range(1, 1024));
+  c.sweep_cmd->add_flag(
+      "--resume", c.resume,
+      "continue an interrupted sweep in its folder: finished runs are kept, interrupted ones "
+      "continue from their checkpoints, the rest run");
 }
 
 void add_info_command(CLI::App& app, CommandLine& c) {
@@ -247,7 +257,15 @@ int sweep_command(const CommandLine& c, const std::string& command_line) {
   if (!c.sweep.stations.empty()) definition.stations = c.sweep.stations;
   if (c.sweep_cmd->count("--lift-threshold") > 0)
     definition.lift_threshold = c.sweep.lift_threshold;
-  return run_sweep(definition, c.out_dir, SweepOptions{c.threads, c.overwrite, command_line});
+  SweepOptions options;
+  options.threads = c.threads;
+  options.overwrite = c.overwrite;
+  options.command_line = command_line;
+  options.jobs = c.jobs;
+  options.resume = c.resume;
+  std::error_code ec;
+  options.executable = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  return run_sweep(definition, c.out_dir, options);
 }
 
 }  // namespace

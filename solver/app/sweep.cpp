@@ -1,10 +1,10 @@
 #include "solver/app/sweep.hpp"
 
+#include <fmt/core.h>
 #include <omp.h>
 
 #include <cctype>
 #include <filesystem>
-#include <fmt/core.h>
 #include <iostream>
 #include <set>
 
@@ -12,6 +12,7 @@
 #include "solver/app/output_folder.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/app/run_summary.hpp"
+#include "solver/app/sweep_jobs.hpp"
 #include "solver/app/sweep_summary.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/table_reader.hpp"
@@ -30,7 +31,8 @@ std::string trim(const std::string& s) {
 std::string filesystem_safe(const std::string& s) {
   std::string out;
   for (char c : s) {
-    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || std::string("._=,+-").find(c) != std::string::npos;
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) ||
+                      std::string("._=,+-").find(c) != std::string::npos;
     out += keep ? c : '_';
   }
   return out;
@@ -73,15 +75,17 @@ SweepAxis parse_vary(const std::string& text) {
   for (const std::string& part : split_outside_brackets(text, ';')) {  // keys that change together
     const auto eq = part.find('=');
     const std::string key = eq == std::string::npos ? "" : trim(part.substr(0, eq));
-    if (key.empty()) throw SceneError("--vary '" + text + "': expected key=v1,v2,... (keys joined by ';')");
+    if (key.empty())
+      throw SceneError("--vary '" + text + "': expected key=v1,v2,... (keys joined by ';')");
     std::vector<std::string> values = split_value_list(part.substr(eq + 1));
     for (const auto& v : values) {
       if (v.empty()) throw SceneError("--vary '" + text + "': empty value for key '" + key + "'");
     }
     if (!axis.values.empty() && values.size() != axis.size()) {
-      throw SceneError(fmt::format("--vary '{}': key '{}' has {} values, '{}' has {} (keys joined by ';' change "
-                                   "together and need as many values)", text, key, values.size(), axis.keys.front(),
-                                   axis.size()));
+      throw SceneError(
+          fmt::format("--vary '{}': key '{}' has {} values, '{}' has {} (keys joined by ';' change "
+                      "together and need as many values)",
+                      text, key, values.size(), axis.keys.front(), axis.size()));
     }
     axis.keys.push_back(key);
     axis.values.push_back(std::move(values));
@@ -101,20 +105,25 @@ std::vector<SweepRun> sweep_runs(const SweepDefinition& sweep) {
       stride /= a.size();
       const std::size_t v = rest / stride;
       rest %= stride;
-      for (std::size_t k = 0; k < a.keys.size(); ++k) run.overrides.emplace_back(a.keys[k], a.values[k][v]);
+      for (std::size_t k = 0; k < a.keys.size(); ++k)
+        run.overrides.emplace_back(a.keys[k], a.values[k][v]);
     }
     std::string name;
-    for (const auto& [key, value] : run.overrides) name += (name.empty() ? "" : ",") + key + "=" + value;
+    for (const auto& [key, value] : run.overrides)
+      name += (name.empty() ? "" : ",") + key + "=" + value;
     name = filesystem_safe(name.empty() ? "base" : name).substr(0, 200);
     run.folder = name;
-    for (int k = 2; !used.insert(run.folder).second; ++k) run.folder = name + "_" + std::to_string(k);
+    for (int k = 2; !used.insert(run.folder).second; ++k)
+      run.folder = name + "_" + std::to_string(k);
     runs.push_back(std::move(run));
   }
   return runs;
 }
 
-int run_sweep(const SweepDefinition& sweep, const std::string& out_dir, const SweepOptions& options) {
-  if (sweep.axes.empty()) throw SceneError("sweep: nothing to vary (give --vary key=v1,v2 or a --study with [[vary]])");
+int run_sweep(const SweepDefinition& sweep, const std::string& out_dir,
+              const SweepOptions& options) {
+  if (sweep.axes.empty())
+    throw SceneError("sweep: nothing to vary (give --vary key=v1,v2 or a --study with [[vary]])");
   const std::vector<SweepRun> runs = sweep_runs(sweep);
   // Every combination is parsed before anything runs: a bad value stops the sweep with
   // nothing written.
@@ -128,13 +137,41 @@ int run_sweep(const SweepDefinition& sweep, const std::string& out_dir, const Sw
       throw SceneError("sweep run '" + r.folder + "': " + e.what());
     }
   }
-  check_output_folder(out_dir, options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh);
+  if (options.resume && options.overwrite)
+    throw SceneError("sweep: --resume keeps the earlier runs, --overwrite deletes them; give one");
+  if (options.jobs < 1)
+    throw SceneError(fmt::format("sweep: --jobs {}: give at least 1", options.jobs));
+  const FolderUse use = options.resume      ? FolderUse::Continue
+                        : options.overwrite ? FolderUse::Overwrite
+                                            : FolderUse::Fresh;
+  check_output_folder(out_dir, use);
   const Scene& base = scenes.front();
-  const std::vector<double> stations = sweep.stations.empty() ? base.output.surface_stations : sweep.stations;
+  const std::vector<double> stations =
+      sweep.stations.empty() ? base.output.surface_stations : sweep.stations;
+  if (options.jobs > 1 || options.resume) {
+    if (options.executable.empty())
+      throw SceneError("sweep: runs side by side need the dustlift executable");
+    prepare_output_folder(out_dir, use);
+    SweepJobsSetup setup;
+    setup.sweep = &sweep;
+    setup.runs = &runs;
+    setup.scenes = &scenes;
+    setup.out_dir = out_dir;
+    setup.executable = options.executable;
+    setup.jobs = options.jobs;
+    setup.threads_per_run =
+        options.threads > 0 ? options.threads : threads_per_job(0, options.jobs);
+    setup.resume = options.resume;
+    setup.stations = stations;
+    std::cerr << fmt::format("sweep: {} runs, {} side by side with {} thread{} each\n", runs.size(),
+                             options.jobs, setup.threads_per_run,
+                             setup.threads_per_run == 1 ? "" : "s");
+    return run_sweep_jobs(setup);
+  }
   SweepSummary summary(sweep.axes, base, stations);
 
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  prepare_output_folder(out_dir, options.overwrite ? FolderUse::Overwrite : FolderUse::Fresh);
+  prepare_output_folder(out_dir, use);
   const InterruptHandler signals;  // across the runs: a Ctrl-C between two runs stops the sweep too
   int status = kExitSuccess;
   for (std::size_t n = 0; n < runs.size() && !InterruptHandler::requested(); ++n) {
@@ -146,16 +183,19 @@ int run_sweep(const SweepDefinition& sweep, const std::string& out_dir, const Sw
     run_options.stop_requested = [] { return InterruptHandler::requested(); };
     const RunOutcome outcome = run_scene(scenes[n], folder, run_options);
     RunResults results = summarise_run(folder, scenes[n], stations, sweep.lift_threshold);
-    summary.add(runs[n], outcome, results);
+    summary.add(runs[n], outcome, results, n);
     summary.write(out_dir);  // after every run: a killed sweep keeps the rows it finished
     if (outcome.exit_code != kExitSuccess && status != kExitInterrupted) status = outcome.exit_code;
-    const std::string how = outcome.exit_code == kExitSuccess     ? "done"
-                            : outcome.exit_code == kExitNumerical ? "numerical failure (exit 3)"
-                                                                  : "interrupted by " + outcome.signal + " (exit 4)";
-    std::cerr << fmt::format("[{}/{}] {}: {} after {} steps, t = {:.4e} s, {:.1f} s wall\n", n + 1, runs.size(),
-                             runs[n].folder, how, outcome.steps, outcome.time, outcome.wall_seconds);
+    const std::string how = outcome.exit_code == kExitSuccess ? "done"
+                            : outcome.exit_code == kExitNumerical
+                                ? "numerical failure (exit 3)"
+                                : "interrupted by " + outcome.signal + " (exit 4)";
+    std::cerr << fmt::format("[{}/{}] {}: {} after {} steps, t = {:.4e} s, {:.1f} s wall\n", n + 1,
+                             runs.size(), runs[n].folder, how, outcome.steps, outcome.time,
+                             outcome.wall_seconds);
     if (outcome.exit_code == kExitInterrupted) {
-      std::cerr << fmt::format("sweep stopped; continue that run with: dustlift run --restart {}\n", outcome.checkpoint);
+      std::cerr << fmt::format("sweep stopped; continue that run with: dustlift run --restart {}\n",
+                               outcome.checkpoint);
     }
   }
   if (InterruptHandler::requested()) status = kExitInterrupted;

@@ -20,10 +20,11 @@ struct SweepAxis {
 /// What a sweep runs and what its summary reports.
 struct SweepDefinition {
   std::string scene_path;
-  std::vector<SweepAxis> axes;           ///< every combination of one value per axis is a run
-  std::vector<std::string> overrides;    ///< --set for every run (before the varied keys)
-  std::vector<double> stations;          ///< m, x of the h(x) columns; empty: output.surface_stations
-  double lift_threshold = kDefaultLiftThreshold;  ///< m, rise above the layer top that counts as lifted
+  std::vector<SweepAxis> axes;         ///< every combination of one value per axis is a run
+  std::vector<std::string> overrides;  ///< --set for every run (before the varied keys)
+  std::vector<double> stations;        ///< m, x of the h(x) columns; empty: output.surface_stations
+  double lift_threshold =
+      kDefaultLiftThreshold;  ///< m, rise above the layer top that counts as lifted
 };
 
 /// Splits a list of TOML values at the commas outside brackets, braces and quotes:
@@ -50,17 +51,22 @@ std::vector<SweepRun> sweep_runs(const SweepDefinition& sweep);
 SweepDefinition read_study(const std::string& path);
 
 struct SweepOptions {
-  int threads = 0;           ///< OpenMP threads per run (0: all cores)
+  int threads = 0;           ///< OpenMP threads per run (0: all cores; with jobs > 1, shared)
   bool overwrite = false;    ///< an existing sweep folder of an earlier sweep is emptied first
   std::string command_line;  ///< recorded in every run's outputs
+  int jobs = 1;              ///< runs side by side (child processes, sweep_jobs.hpp)
+  bool resume = false;       ///< keep the finished runs of an earlier sweep into the same folder
+  std::string executable;    ///< the dustlift executable (jobs > 1 or resume start it)
 };
 
 /// Validates every combination (a bad one: SceneError, nothing written) and the folder
-/// (missing or empty, or --overwrite), then runs them one after another through run_scene
-/// into out_dir/<folder>/ and writes out_dir/summary.csv and out_dir/summary.h5. Returns 0 if
+/// (missing or empty, or --overwrite, or --resume), then runs them one after another through
+/// run_scene into out_dir/<folder>/ (with jobs > 1 or resume: side by side as child processes,
+/// sweep_jobs.hpp) and writes out_dir/summary.csv and out_dir/summary.h5. Returns 0 if
 /// every run succeeded, 3 if any failed numerically (its row records exit status 3 and the
 /// sweep goes on), 4 when SIGINT/SIGTERM stopped it (the run in progress is checkpointed and
 /// recorded with exit status 4; the runs after it are not started).
-int run_sweep(const SweepDefinition& sweep, const std::string& out_dir, const SweepOptions& options);
+int run_sweep(const SweepDefinition& sweep, const std::string& out_dir,
+              const SweepOptions& options);
 
 }  // namespace dustlift

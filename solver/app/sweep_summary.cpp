@@ -1,8 +1,9 @@
 #include "solver/app/sweep_summary.hpp"
 
+#include <fmt/core.h>
+
 #include <cctype>
 #include <filesystem>
-#include <fmt/core.h>
 #include <fstream>
 #include <limits>
 
@@ -12,11 +13,12 @@ namespace dustlift {
 namespace {
 
 std::vector<SeriesColumn> numeric_columns(const Scene& base, const std::vector<double>& stations) {
-  std::vector<SeriesColumn> c{{"run_index", "1"}, {"exit_status", "1"}, {"wall_time", "s"}, {"steps", "1"},
-                              {"end_time", "s"},  {"shock_x", "m"},     {"lifting_delay", "m"},
-                              {"layer_top", "m"}};
+  std::vector<SeriesColumn> c{{"run_index", "1"},     {"exit_status", "1"}, {"wall_time", "s"},
+                              {"steps", "1"},         {"end_time", "s"},    {"shock_x", "m"},
+                              {"lifting_delay", "m"}, {"layer_top", "m"}};
   for (double x : stations) c.push_back({"h_at_x" + number_in_identifier(x), "m"});
-  for (const SummaryCloudColumn& cloud : kSummaryCloudColumns) c.push_back({cloud.summary, cloud.unit});
+  for (const SummaryCloudColumn& cloud : kSummaryCloudColumns)
+    c.push_back({cloud.summary, cloud.unit});
   for (const BandConfig& band : base.output.bands) {
     for (const std::string& component : kSummaryForceColumns) {
       c.push_back({band.name + "_" + component + "_peak", "N"});
@@ -44,13 +46,15 @@ std::string csv_field(const std::string& s) {
 
 }  // namespace
 
-SweepSummary::SweepSummary(const std::vector<SweepAxis>& axes, const Scene& base, const std::vector<double>& stations)
+SweepSummary::SweepSummary(const std::vector<SweepAxis>& axes, const Scene& base,
+                           const std::vector<double>& stations)
     : numbers_("summary", numeric_columns(base, stations)) {
   for (const auto& a : axes) keys_.insert(keys_.end(), a.keys.begin(), a.keys.end());
   key_values_.resize(keys_.size());
 }
 
-void SweepSummary::add(const SweepRun& run, const RunOutcome& outcome, const RunResults& results) {
+void SweepSummary::add(const SweepRun& run, const RunOutcome& outcome, const RunResults& results,
+                       std::size_t index) {
   runs_.push_back(run.folder);
   for (std::size_t k = 0; k < keys_.size(); ++k) {
     std::string value;
@@ -61,9 +65,14 @@ void SweepSummary::add(const SweepRun& run, const RunOutcome& outcome, const Run
   const bool ok = outcome.exit_code == kExitSuccess;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto result = [&](double v) { return ok ? v : nan; };
-  std::vector<double> row{static_cast<double>(runs_.size() - 1), static_cast<double>(outcome.exit_code),
-                          outcome.wall_seconds, static_cast<double>(outcome.steps), outcome.time,
-                          result(results.shock_x), result(results.lifting_delay), result(results.layer_top)};
+  std::vector<double> row{static_cast<double>(index),
+                          static_cast<double>(outcome.exit_code),
+                          outcome.wall_seconds,
+                          static_cast<double>(outcome.steps),
+                          outcome.time,
+                          result(results.shock_x),
+                          result(results.lifting_delay),
+                          result(results.layer_top)};
   for (double h : results.heights) row.push_back(result(h));
   for (std::size_t c = 0; c < kSummaryCloudColumns.size(); ++c)
     row.push_back(c < results.cloud.size() ? result(results.cloud[c]) : nan);
@@ -88,7 +97,8 @@ void SweepSummary::write(const std::string& dir) const {
     for (std::size_t r = 0; r < runs_.size(); ++r) {
       f << csv_field(runs_[r]);
       for (const auto& values : key_values_) f << "," << csv_field(values[r]);
-      for (std::size_t c = 0; c < numbers_.columns().size(); ++c) f << "," << fmt::format("{}", numbers_.column(c)[r]);
+      for (std::size_t c = 0; c < numbers_.columns().size(); ++c)
+        f << "," << fmt::format("{}", numbers_.column(c)[r]);
       f << "\n";
     }
   }
@@ -96,7 +106,8 @@ void SweepSummary::write(const std::string& dir) const {
   const std::string h5 = (fs::path(dir) / "summary.h5").string();
   write_series_h5(h5, numbers_);
   write_string_column_h5(h5, "summary", "run", runs_);
-  for (std::size_t k = 0; k < keys_.size(); ++k) write_string_column_h5(h5, "summary", key_column(keys_[k]), key_values_[k]);
+  for (std::size_t k = 0; k < keys_.size(); ++k)
+    write_string_column_h5(h5, "summary", key_column(keys_[k]), key_values_[k]);
 }
 
 }  // namespace dustlift

@@ -15,10 +15,13 @@ namespace dustlift {
 class SweepSummary {
  public:
   /// Columns from the sweep's keys, the stations and the bands of the base scene.
-  SweepSummary(const std::vector<SweepAxis>& axes, const Scene& base, const std::vector<double>& stations);
+  SweepSummary(const std::vector<SweepAxis>& axes, const Scene& base,
+               const std::vector<double>& stations);
 
-  /// One run's row. A failed run (exit 3) records how far it got, its results stay NaN.
-  void add(const SweepRun& run, const RunOutcome& outcome, const RunResults& results);
+  /// One run's row (`index`: its place in the sweep, the run_index column). A failed run
+  /// (exit 3) records how far it got, its results stay NaN.
+  void add(const SweepRun& run, const RunOutcome& outcome, const RunResults& results,
+           std::size_t index);
 
   /// Rewrites DIR/summary.csv (header: run, the keys, then "<name>_<unit>" columns) and
   /// DIR/summary.h5 (group /summary: the numeric columns as a series with units, and

@@ -281,17 +281,11 @@ TEST_F(InterruptRestart, SignalsFromOutsideAtAnyMomentThenRestartEqualTheUninter
   for (const Trial trial : {Trial{SIGINT, 3}, Trial{SIGTERM, 8}, Trial{SIGINT, 14}}) {
     const fs::path out = dir_ / ("stopped_" + std::to_string(trial.after_frames));
     const std::string log = (dir_ / "child.txt").string();
-    const pid_t child = fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(fd, 1);
-      dup2(fd, 2);
-      const std::string scene = scene_.string(), o = out.string();
-      execl(DUSTLIFT_BINARY, DUSTLIFT_BINARY, "run", scene.c_str(), "--out", o.c_str(), "--threads",
-            "1", "--set", "output.interval=1e-6", static_cast<char*>(nullptr));
-      _exit(127);
-    }
+    const pid_t child =
+        dustlift::testing::start_cli({"run", scene_.string(), "--out", out.string(), "--threads",
+                                      "1", "--set", "output.interval=1e-6"},
+                                     log);
+    ASSERT_GT(child, 0);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (
         std::chrono::steady_clock::now() < deadline &&
@@ -358,20 +352,12 @@ TEST_F(InterruptRestart, TwoSignalsTenMillisecondsApartAreOneStopRequestWithAChe
   // writes the checkpoint of the progress since the last output and exits 4.
   const fs::path out = dir_ / "quickstart";
   const std::string log = (dir_ / "child.txt").string();
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    setpgid(0, 0);  // its own process group, as a job started by a batch system
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, 1);
-    dup2(fd, 2);
-    const std::string scene = std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml",
-                      o = out.string();
-    execl(DUSTLIFT_BINARY, DUSTLIFT_BINARY, "run", scene.c_str(), "--out", o.c_str(), "--threads",
-          "2", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  setpgid(child, child);  // either side may run first
+  // Its own process group, as a job started by a batch system.
+  const pid_t child = dustlift::testing::start_cli(
+      {"run", std::string(DUSTLIFT_SOURCE_DIR) + "/cases/quickstart.toml", "--out", out.string(),
+       "--threads", "2"},
+      log, true);
+  ASSERT_GT(child, 0);
   // Once the first output after t = 0 is listed and the run has gone on a little beyond it.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (std::chrono::steady_clock::now() < deadline &&

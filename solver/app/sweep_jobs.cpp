@@ -1,0 +1,356 @@
+#include "solver/app/sweep_jobs.hpp"
+
+#include <fcntl.h>
+#include <fmt/core.h>
+#include <omp.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+#include "insitu/checkpoint.hpp"
+#include "solver/app/interrupt.hpp"
+#include "solver/app/output_folder.hpp"
+#include "solver/app/run_summary.hpp"
+#include "solver/app/sweep_summary.hpp"
+#include "solver/scene/table_reader.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace dustlift {
+namespace {
+
+std::vector<std::string> log_lines(const std::string& folder) {
+  std::vector<std::string> lines;
+  std::ifstream f(fs::path(folder) / "run.log");
+  for (std::string line; std::getline(f, line);) lines.push_back(line);
+  return lines;
+}
+
+bool starts_with(const std::string& s, const char* prefix) {
+  return s.rfind(prefix, 0) == 0;
+}
+
+/// "t = 3.8509e-05 s ( 12.8%)  step 160  ..." -> time, percent and step.
+bool parse_progress(const std::string& line, double& time, double& percent, long long& step) {
+  return std::sscanf(line.c_str(), "t = %lf s (%lf%%) step %lld", &time, &percent, &step) == 3;
+}
+
+/// A resolved scene's keys and values: without the comment lines that head it (the code, the
+/// command line, the source file and the overrides, which name the same scene differently).
+std::string scene_body(std::istream& in) {
+  std::string text, line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header && starts_with(line, "#")) continue;
+    header = false;
+    text += line + "\n";
+  }
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+std::string scene_body_of_folder(const std::string& folder) {
+  std::ifstream f(fs::path(folder) / "scene.resolved.toml");
+  return scene_body(f);
+}
+
+std::string scene_body_of(const Scene& scene) {
+  std::istringstream in(scene.resolved_toml);
+  return scene_body(in);
+}
+
+/// A child `dustlift run`: its output goes to its run.log only (the sweep prints the progress).
+pid_t spawn(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0)
+    throw SceneError(fmt::format("sweep: cannot start '{}': {}", args[0], std::strerror(error)));
+  return pid;
+}
+
+struct Child {
+  std::size_t index = 0;
+  pid_t pid = -1;
+  Clock::time_point started;
+  bool told_to_stop = false;
+};
+
+}  // namespace
+
+namespace {
+
+/// The time and step exactly as the run ended (the log prints them rounded): from the
+/// checkpoint written at the end, when it is that state.
+void exact_end_from_checkpoint(const std::string& folder, RunOutcome& outcome) {
+  const fs::path path = fs::path(folder) / "checkpoint.h5";
+  if (!fs::exists(path)) return;
+  try {
+    const Snapshot s = read_checkpoint(path.string());
+    const auto t = s.f64.find("run/time");
+    const auto step = s.i64.find("run/step");
+    if (t == s.f64.end() || step == s.i64.end() || t->second.size() != 1 ||
+        step->second.size() != 1)
+      return;
+    if (step->second[0] != outcome.steps) return;  // an earlier checkpoint, not the end
+    outcome.time = t->second[0];
+  } catch (const std::exception&) {
+    // The rounded values of the log stand.
+  }
+}
+
+}  // namespace
+
+EarlierRunState read_earlier_run(const std::string& folder) {
+  EarlierRunState s;
+  const std::vector<std::string> lines = log_lines(folder);
+  if (lines.empty()) return s;
+  s.state = EarlierRun::Broken;
+  double last_time = 0.0, percent = 0.0;
+  long long last_step = 0;
+  for (const std::string& line : lines) {
+    double t = 0.0;
+    long long step = 0;
+    double wall = 0.0;
+    char name[16] = {};
+    if (parse_progress(line, t, percent, step)) {
+      last_time = t;
+      last_step = step;
+    } else if (std::sscanf(line.c_str(), "done: t = %lf s after %lld steps in %lf s wall", &t,
+                           &step, &wall) == 3) {
+      s.state = EarlierRun::Finished;
+      s.outcome = RunOutcome{kExitSuccess, t, step, wall, "", "", ""};
+      s.outcome.checkpoint = (fs::path(folder) / "checkpoint.h5").string();
+    } else if (starts_with(line, "dustlift: numerical failure: ")) {
+      s.state = EarlierRun::Failed;
+      s.outcome.exit_code = kExitNumerical;
+      s.outcome.failure = line.substr(std::string("dustlift: numerical failure: ").size());
+      s.outcome.time = last_time;
+      s.outcome.steps = last_step;
+    } else if (std::sscanf(line.c_str(),
+                           "dustlift: interrupted by %15s at t = %lf s after %lld steps", name, &t,
+                           &step) == 3) {
+      s.state = fs::exists(fs::path(folder) / "checkpoint.h5") ? EarlierRun::Interrupted
+                                                               : EarlierRun::Broken;
+      s.outcome.exit_code = kExitInterrupted;
+      s.outcome.signal = name;
+      s.outcome.time = t;
+      s.outcome.steps = step;
+      s.outcome.checkpoint = (fs::path(folder) / "checkpoint.h5").string();
+    } else if (starts_with(line, "  restarted at t = ")) {
+      // A continuation: what came before it ended is superseded by what follows.
+      s.state = EarlierRun::Broken;
+    }
+  }
+  if (s.state == EarlierRun::Finished || s.state == EarlierRun::Interrupted)
+    exact_end_from_checkpoint(folder, s.outcome);
+  return s;
+}
+
+std::optional<double> progress_fraction(const std::string& folder) {
+  std::optional<double> fraction;
+  for (const std::string& line : log_lines(folder)) {
+    double t = 0.0, percent = 0.0;
+    long long step = 0;
+    if (parse_progress(line, t, percent, step)) fraction = std::clamp(percent / 100.0, 0.0, 1.0);
+  }
+  return fraction;
+}
+
+int threads_per_job(int threads, int jobs) {
+  const int total = threads > 0 ? threads : omp_get_num_procs();
+  return std::max(1, total / std::max(1, jobs));
+}
+
+double sweep_eta(const std::vector<double>& finished_walls,
+                 const std::vector<std::pair<double, double>>& running_elapsed_fraction,
+                 std::size_t queued, int jobs) {
+  // A run's whole wall time: the finished ones', and the running ones' elapsed time over
+  // their fraction done; the runs not started take the mean of those.
+  std::vector<double> whole = finished_walls;
+  double remaining = 0.0;
+  for (const auto& [elapsed, fraction] : running_elapsed_fraction) {
+    if (!(fraction > 0.0)) continue;
+    whole.push_back(elapsed / fraction);
+    remaining += elapsed / fraction - elapsed;
+  }
+  if (whole.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double mean = 0.0;
+  for (double w : whole) mean += w;
+  mean /= static_cast<double>(whole.size());
+  return (remaining + static_cast<double>(queued) * mean) / std::max(1, jobs);
+}
+
+int run_sweep_jobs(const SweepJobsSetup& setup) {
+  const std::vector<SweepRun>& runs = *setup.runs;
+  const std::vector<Scene>& scenes = *setup.scenes;
+  const std::size_t n = runs.size();
+  std::vector<std::optional<RunOutcome>> outcomes(n);
+  std::vector<RunResults> results(n);
+  std::vector<std::string> restart_from(n);
+  std::vector<double> finished_walls;
+  int status = kExitSuccess;
+  const auto folder_of = [&](std::size_t k) {
+    return (fs::path(setup.out_dir) / runs[k].folder).string();
+  };
+
+  // What an earlier attempt left: finished and failed runs are kept, interrupted ones continue.
+  if (setup.resume) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::string folder = folder_of(k);
+      const EarlierRunState earlier = read_earlier_run(folder);
+      if (earlier.state == EarlierRun::None) continue;
+      if (scene_body_of_folder(folder) != scene_body_of(scenes[k]))
+        throw SceneError(fmt::format(
+            "sweep --resume: '{}' holds a run of another scene than this sweep's run '{}' (was "
+            "the study changed? give a new --out, or --overwrite)",
+            folder, runs[k].folder));
+      if (earlier.state == EarlierRun::Finished || earlier.state == EarlierRun::Failed) {
+        outcomes[k] = earlier.outcome;
+        if (earlier.state == EarlierRun::Failed) status = kExitNumerical;
+        if (earlier.state == EarlierRun::Finished)
+          finished_walls.push_back(earlier.outcome.wall_seconds);
+      } else if (earlier.state == EarlierRun::Interrupted) {
+        restart_from[k] = earlier.outcome.checkpoint;
+      }
+    }
+  }
+
+  const auto write_summary = [&] {
+    SweepSummary summary(setup.sweep->axes, scenes.front(), setup.stations);
+    for (std::size_t k = 0; k < n; ++k)
+      if (outcomes[k]) summary.add(runs[k], *outcomes[k], results[k], k);
+    summary.write(setup.out_dir);
+  };
+  const auto finish = [&](std::size_t k, const RunOutcome& outcome, const char* how_kept) {
+    outcomes[k] = outcome;
+    results[k] =
+        summarise_run(folder_of(k), scenes[k], setup.stations, setup.sweep->lift_threshold);
+    write_summary();  // after every run: a killed sweep keeps the rows it finished
+    const std::string how = outcome.exit_code == kExitSuccess     ? "done"
+                            : outcome.exit_code == kExitNumerical ? "numerical failure (exit 3)"
+                            : outcome.exit_code == kExitInterrupted
+                                ? "interrupted by " + outcome.signal + " (exit 4)"
+                                : fmt::format("ended with exit status {}", outcome.exit_code);
+    std::cerr << fmt::format("[{}/{}] {}: {}{} after {} steps, t = {:.4e} s, {:.1f} s wall\n",
+                             k + 1, n, runs[k].folder, how, how_kept, outcome.steps, outcome.time,
+                             outcome.wall_seconds);
+  };
+  // The kept runs' results first: every summary written holds only complete rows.
+  for (std::size_t k = 0; k < n; ++k)
+    if (outcomes[k])
+      results[k] =
+          summarise_run(folder_of(k), scenes[k], setup.stations, setup.sweep->lift_threshold);
+  for (std::size_t k = 0; k < n; ++k)
+    if (outcomes[k]) finish(k, *outcomes[k], " (kept from the earlier sweep)");
+
+  const InterruptHandler signals;  // forwarded to the children, which checkpoint and stop
+  std::vector<Child> running;
+  std::size_t next = 0;
+  auto last_report = Clock::now();
+  const auto launch = [&](std::size_t k) {
+    const std::string folder = folder_of(k);
+    std::vector<std::string> args{setup.executable, "run"};
+    if (!restart_from[k].empty()) {
+      args.insert(args.end(), {"--restart", restart_from[k]});
+    } else {
+      args.push_back(setup.sweep->scene_path);
+      for (const std::string& o : setup.sweep->overrides) args.insert(args.end(), {"--set", o});
+      for (const auto& [key, value] : runs[k].overrides)
+        args.insert(args.end(), {"--set", key + "=" + value});
+      args.insert(args.end(), {"--out", folder, "--overwrite"});
+    }
+    args.insert(args.end(), {"--threads", std::to_string(setup.threads_per_run)});
+    running.push_back(Child{k, spawn(args), Clock::now(), false});
+    std::cerr << fmt::format("[{}/{}] {}: {} ({} thread{})\n", k + 1, n, runs[k].folder,
+                             restart_from[k].empty() ? "started" : "continued from its checkpoint",
+                             setup.threads_per_run, setup.threads_per_run == 1 ? "" : "s");
+  };
+  while (true) {
+    while (!InterruptHandler::requested() &&
+           running.size() < static_cast<std::size_t>(setup.jobs)) {
+      while (next < n && outcomes[next]) ++next;
+      if (next == n) break;
+      launch(next++);
+    }
+    if (running.empty()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (InterruptHandler::requested()) {
+      for (Child& c : running) {
+        if (!c.told_to_stop) kill(c.pid, SIGINT);  // the child counts a second one as the same
+        c.told_to_stop = true;
+      }
+    }
+    for (std::size_t r = 0; r < running.size();) {
+      int wait_status = 0;
+      if (waitpid(running[r].pid, &wait_status, WNOHANG) != running[r].pid) {
+        ++r;
+        continue;
+      }
+      const Child c = running[r];
+      running.erase(running.begin() + static_cast<std::ptrdiff_t>(r));
+      const int code =
+          WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : 128 + WTERMSIG(wait_status);
+      RunOutcome outcome = read_earlier_run(folder_of(c.index)).outcome;
+      outcome.exit_code = code;
+      // The time loop's wall time as the run logged it (what a run one after another reports),
+      // else the process's.
+      if (code != kExitSuccess || !(outcome.wall_seconds > 0.0))
+        outcome.wall_seconds = std::chrono::duration<double>(Clock::now() - c.started).count();
+      if (code == kExitSuccess) finished_walls.push_back(outcome.wall_seconds);
+      finish(c.index, outcome, "");
+      if (code != kExitSuccess && status != kExitInterrupted) status = code;
+      if (code == kExitInterrupted)
+        std::cerr << fmt::format(
+            "continue that run with: dustlift sweep ... --resume (or dustlift run --restart {})\n",
+            outcome.checkpoint);
+    }
+    if (Clock::now() - last_report >= std::chrono::seconds(10) && !running.empty()) {
+      last_report = Clock::now();
+      std::vector<std::pair<double, double>> elapsed_fraction;
+      std::string parts;
+      for (const Child& c : running) {
+        const double elapsed = std::chrono::duration<double>(Clock::now() - c.started).count();
+        const double fraction = progress_fraction(folder_of(c.index)).value_or(0.0);
+        elapsed_fraction.emplace_back(elapsed, fraction);
+        parts += fmt::format("{}{} {:.0f}%", parts.empty() ? "" : ", ", runs[c.index].folder,
+                             100.0 * fraction);
+      }
+      std::size_t queued = 0;
+      for (std::size_t k = next; k < n; ++k) queued += outcomes[k] ? 0 : 1;
+      std::size_t done = 0;
+      for (const auto& o : outcomes) done += o ? 1 : 0;
+      std::cerr << fmt::format(
+          "sweep: {}/{} done, running {}; sweep ETA {}\n", done, n, parts,
+          format_duration(sweep_eta(finished_walls, elapsed_fraction, queued, setup.jobs)));
+    }
+  }
+  if (InterruptHandler::requested()) status = kExitInterrupted;
+  std::cerr << "summary: " << (fs::path(setup.out_dir) / "summary.csv").string()
+            << ", summary.h5\n";
+  return status;
+}
+
+}  // namespace dustlift
