@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "insitu/outputs.hpp"
+#include "solver/app/cost_estimate.hpp"
+#include "solver/app/run_scene.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/parallel/world.hpp"
@@ -50,9 +52,37 @@ void print_dust_cloud(const Scene& scene, const ParcelSystem& parcels) {
     fmt::print("{}\n", warning);
 }
 
+/// The expected wall time of the run on this machine's threads, and what it comes from.
+void print_cost(const Scene& scene, const Simulation& sim, double steps, bool fresh_rates) {
+  std::string how;
+  const WorkRates r = measured_rates(scene, fresh_rates, how);
+  const WorkForecast w = forecast_work(sim, steps);
+  const bool skipping = scene.run.skip_at_rest;
+  fmt::print(
+      "cost: expected wall time ~ {} on {} thread{} (within about a factor 2; outputs not "
+      "counted)\n",
+      format_duration(expected_wall(w, r)), omp_get_max_threads(),
+      omp_get_max_threads() == 1 ? "" : "s");
+  fmt::print(
+      "  work: {:.3g} gas cell-stages ({:.0f} % of the full grid{}), {:.3g} parcel-sub-steps "
+      "and {:.3g} parcel samples ({:.0f} % of the parcels)\n",
+      w.cell_stages, 100.0 * w.gas_share,
+      skipping ? (scene.run.rest_tolerance > 0.0
+                      ? ", skipping within run.rest_tolerance: the active region taken to follow "
+                        "the shock, a lower bound"
+                      : ", exact skipping at rest")
+               : "",
+      w.parcel_substeps, w.parcel_steps, 100.0 * w.parcel_share);
+  fmt::print(
+      "  rates: gas {:.3g} ns per cell-stage, DEM {:.3g} ns per parcel-sub-step, coupling "
+      "{:.3g} ns per parcel sample; {}\n",
+      1e9 * r.gas_per_cell_stage, 1e9 * r.dem_per_parcel_substep, 1e9 * r.coupling_per_parcel_step,
+      how);
+}
+
 }  // namespace
 
-void print_info(const Scene& scene, const Simulation& sim) {
+void print_info(const Scene& scene, const Simulation& sim, CostEstimate cost) {
   const Grid2D& g = sim.grid();
   fmt::print("scene: {}  (run name '{}')\n", scene.source_file, scene.run.name);
   fmt::print("effects on:\n");
@@ -90,11 +120,12 @@ void print_info(const Scene& scene, const Simulation& sim) {
                    "the parcels in its slab"
                  : "MPI: mpirun -np N dustlift run SCENE runs x-slabs of this grid");
   const double dt0 = sim.gas().stable_dt();
+  const double steps = estimated_steps(sim);
   fmt::print(
       "time: end {:g} s; initial dt (eq. 17, CFL {:g}) = {:.4g} s; estimated steps ~ {:.0f} "
       "(the fastest gas at t = 0 on the smallest cells; {:.0f} at the initial dt)\n",
-      scene.run.end_time, scene.gas.scheme.cfl, dt0, estimated_steps(sim),
-      std::ceil(scene.run.end_time / dt0));
+      scene.run.end_time, scene.gas.scheme.cfl, dt0, steps, std::ceil(scene.run.end_time / dt0));
+  if (cost != CostEstimate::Off) print_cost(scene, sim, steps, cost == CostEstimate::Fresh);
   fmt::print("\n{}", scene.resolved_toml);
 }
 

@@ -11,7 +11,14 @@ namespace dustlift {
 /// step itself can be far too long: there the fast gas may sit only in stretched cells.
 double estimated_steps(const Simulation& sim);
 
-/// Prints the resolved scene, effects on, grid, parcels, memory and step estimates.
-void print_info(const Scene& scene, const Simulation& sim);
+/// How `info` estimates the run's cost.
+enum class CostEstimate {
+  Off,     ///< --no-estimate
+  Cached,  ///< rates from the cache when measured within a day, else measured now
+  Fresh,   ///< --calibrate: measured now
+};
+
+/// Prints the resolved scene, effects on, grid, parcels, memory, step and cost estimates.
+void print_info(const Scene& scene, const Simulation& sim, CostEstimate cost);
 
 }  // namespace dustlift

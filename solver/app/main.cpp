@@ -143,7 +143,7 @@ struct CommandLine {
   std::string scene_path, out_dir, restart_path, study_path;
   std::vector<std::string> overrides, varies, info_scenes;
   int threads = 0, jobs = 1;
-  bool overwrite = false, keys = false, resume = false;
+  bool overwrite = false, keys = false, resume = false, calibrate = false, no_estimate = false;
   SweepDefinition sweep;  ///< --stations and --lift-threshold
   CLI::App* run = nullptr;
   CLI::App* sweep_cmd = nullptr;
@@ -225,6 +225,14 @@ void add_info_command(CLI::App& app, CommandLine& c) {
       "every key the scenes' parser reads, as Markdown");
   c.info->add_option("--set", c.overrides, "override a scene key (repeatable)")
       ->allow_extra_args(false);
+  c.info
+      ->add_option("--threads,-t", c.threads,
+                   "threads the cost estimate is for (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  c.info->add_flag("--calibrate", c.calibrate,
+                   "measure this machine's rates for the cost estimate again (else cached a day)");
+  c.info->add_flag("--no-estimate", c.no_estimate,
+                   "leave out the cost estimate (it steps the scene for about 2 s)");
 }
 
 /// `info`: a scene's resolved keys, effects, grid and step estimate, or with --keys the
@@ -242,7 +250,10 @@ int info_command(const CommandLine& c) {
     throw SceneError("info: give one scene file (several only with --keys)");
   const Scene scene = load_scene(c.info_scenes.front(), c.overrides);
   const Simulation sim(scene);
-  print_info(scene, sim);
+  print_info(scene, sim,
+             c.no_estimate ? CostEstimate::Off
+             : c.calibrate ? CostEstimate::Fresh
+                           : CostEstimate::Cached);
   return kExitSuccess;
 }
 
