@@ -56,6 +56,11 @@ std::string cache_key(const Scene& scene) {
   return fmt::format("{:016x}-t{}", h, omp_get_max_threads());
 }
 
+std::string threads_text() {
+  const int n = omp_get_max_threads();
+  return fmt::format("{} thread{}", n, n == 1 ? "" : "s");
+}
+
 constexpr double kCacheSeconds = 24.0 * 3600.0;  // machines of one kind drift from day to day
 
 bool read_cached(const std::string& key, WorkRates& r, double& age) {
@@ -186,17 +191,16 @@ WorkRates measured_rates(const Scene& scene, bool fresh, std::string& how) {
   WorkRates r;
   double age = 0.0;
   if (!fresh && read_cached(key, r, age)) {
-    how = fmt::format("rates measured {:.0f} min ago on this machine ({} threads; cached in {})",
-                      age / 60.0, omp_get_max_threads(), cache_file().string());
+    how = fmt::format("rates measured {:.0f} min ago on this machine ({}; cached in {})",
+                      age / 60.0, threads_text(), cache_file().string());
     return r;
   }
   const auto start = std::chrono::steady_clock::now();
   r = measure(scene, 2.0, 200);
   write_cached(key, r);
-  how = fmt::format(
-      "rates measured now on this machine in {:.1f} s ({} threads; cached for a day in {})",
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-      omp_get_max_threads(), cache_file().string());
+  how = fmt::format("rates measured now on this machine in {:.1f} s ({}; cached for a day in {})",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                    threads_text(), cache_file().string());
   return r;
 }
 
