@@ -120,13 +120,11 @@ std::vector<SweepRun> sweep_runs(const SweepDefinition& sweep) {
   return runs;
 }
 
-int run_sweep(const SweepDefinition& sweep, const std::string& out_dir,
-              const SweepOptions& options) {
-  if (sweep.axes.empty())
-    throw SceneError("sweep: nothing to vary (give --vary key=v1,v2 or a --study with [[vary]])");
-  const std::vector<SweepRun> runs = sweep_runs(sweep);
-  // Every combination is parsed before anything runs: a bad value stops the sweep with
-  // nothing written.
+namespace {
+
+/// Every combination's scene, parsed before anything runs: a bad value stops the sweep with
+/// nothing written, naming the run.
+std::vector<Scene> sweep_scenes(const SweepDefinition& sweep, const std::vector<SweepRun>& runs) {
   std::vector<Scene> scenes;
   for (const SweepRun& r : runs) {
     std::vector<std::string> overrides = sweep.overrides;
@@ -137,41 +135,38 @@ int run_sweep(const SweepDefinition& sweep, const std::string& out_dir,
       throw SceneError("sweep run '" + r.folder + "': " + e.what());
     }
   }
-  if (options.resume && options.overwrite)
-    throw SceneError("sweep: --resume keeps the earlier runs, --overwrite deletes them; give one");
-  if (options.jobs < 1)
-    throw SceneError(fmt::format("sweep: --jobs {}: give at least 1", options.jobs));
-  const FolderUse use = options.resume      ? FolderUse::Continue
-                        : options.overwrite ? FolderUse::Overwrite
-                                            : FolderUse::Fresh;
-  check_output_folder(out_dir, use);
-  const Scene& base = scenes.front();
-  const std::vector<double> stations =
-      sweep.stations.empty() ? base.output.surface_stations : sweep.stations;
-  if (options.jobs > 1 || options.resume) {
-    if (options.executable.empty())
-      throw SceneError("sweep: runs side by side need the dustlift executable");
-    prepare_output_folder(out_dir, use);
-    SweepJobsSetup setup;
-    setup.sweep = &sweep;
-    setup.runs = &runs;
-    setup.scenes = &scenes;
-    setup.out_dir = out_dir;
-    setup.executable = options.executable;
-    setup.jobs = options.jobs;
-    setup.threads_per_run =
-        options.threads > 0 ? options.threads : threads_per_job(0, options.jobs);
-    setup.resume = options.resume;
-    setup.stations = stations;
-    std::cerr << fmt::format("sweep: {} runs, {} side by side with {} thread{} each\n", runs.size(),
-                             options.jobs, setup.threads_per_run,
-                             setup.threads_per_run == 1 ? "" : "s");
-    return run_sweep_jobs(setup);
-  }
-  SweepSummary summary(sweep.axes, base, stations);
+  return scenes;
+}
+
+/// The runs side by side as child processes (sweep_jobs.hpp).
+int run_side_by_side(const SweepDefinition& sweep, const std::vector<SweepRun>& runs,
+                     const std::vector<Scene>& scenes, const std::string& out_dir,
+                     const SweepOptions& options, const std::vector<double>& stations) {
+  if (options.executable.empty())
+    throw SceneError("sweep: runs side by side need the dustlift executable");
+  SweepJobsSetup setup;
+  setup.sweep = &sweep;
+  setup.runs = &runs;
+  setup.scenes = &scenes;
+  setup.out_dir = out_dir;
+  setup.executable = options.executable;
+  setup.jobs = options.jobs;
+  setup.threads_per_run = options.threads > 0 ? options.threads : threads_per_job(0, options.jobs);
+  setup.resume = options.resume;
+  setup.stations = stations;
+  std::cerr << fmt::format("sweep: {} runs, {} side by side with {} thread{} each\n", runs.size(),
+                           options.jobs, setup.threads_per_run,
+                           setup.threads_per_run == 1 ? "" : "s");
+  return run_sweep_jobs(setup);
+}
+
+/// The runs one after another in this process, through run_scene.
+int run_one_after_another(const SweepDefinition& sweep, const std::vector<SweepRun>& runs,
+                          const std::vector<Scene>& scenes, const std::string& out_dir,
+                          const SweepOptions& options, const std::vector<double>& stations) {
+  SweepSummary summary(sweep.axes, scenes.front(), stations);
 
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  prepare_output_folder(out_dir, use);
   const InterruptHandler signals;  // across the runs: a Ctrl-C between two runs stops the sweep too
   int status = kExitSuccess;
   for (std::size_t n = 0; n < runs.size() && !InterruptHandler::requested(); ++n) {
@@ -201,6 +196,30 @@ int run_sweep(const SweepDefinition& sweep, const std::string& out_dir,
   if (InterruptHandler::requested()) status = kExitInterrupted;
   std::cerr << "summary: " << (fs::path(out_dir) / "summary.csv").string() << ", summary.h5\n";
   return status;
+}
+
+}  // namespace
+
+int run_sweep(const SweepDefinition& sweep, const std::string& out_dir,
+              const SweepOptions& options) {
+  if (sweep.axes.empty())
+    throw SceneError("sweep: nothing to vary (give --vary key=v1,v2 or a --study with [[vary]])");
+  const std::vector<SweepRun> runs = sweep_runs(sweep);
+  const std::vector<Scene> scenes = sweep_scenes(sweep, runs);
+  if (options.resume && options.overwrite)
+    throw SceneError("sweep: --resume keeps the earlier runs, --overwrite deletes them; give one");
+  if (options.jobs < 1)
+    throw SceneError(fmt::format("sweep: --jobs {}: give at least 1", options.jobs));
+  const FolderUse use = options.resume      ? FolderUse::Continue
+                        : options.overwrite ? FolderUse::Overwrite
+                                            : FolderUse::Fresh;
+  check_output_folder(out_dir, use);
+  const std::vector<double> stations =
+      sweep.stations.empty() ? scenes.front().output.surface_stations : sweep.stations;
+  prepare_output_folder(out_dir, use);
+  if (options.jobs > 1 || options.resume)
+    return run_side_by_side(sweep, runs, scenes, out_dir, options, stations);
+  return run_one_after_another(sweep, runs, scenes, out_dir, options, stations);
 }
 
 }  // namespace dustlift

@@ -203,51 +203,87 @@ double sweep_eta(const std::vector<double>& finished_walls,
   return (remaining + static_cast<double>(queued) * mean) / std::max(1, jobs);
 }
 
-int run_sweep_jobs(const SweepJobsSetup& setup) {
-  const std::vector<SweepRun>& runs = *setup.runs;
-  const std::vector<Scene>& scenes = *setup.scenes;
-  const std::size_t n = runs.size();
-  std::vector<std::optional<RunOutcome>> outcomes(n);
-  std::vector<RunResults> results(n);
-  std::vector<std::string> restart_from(n);
-  std::vector<double> finished_walls;
-  int status = kExitSuccess;
-  const auto folder_of = [&](std::size_t k) {
-    return (fs::path(setup.out_dir) / runs[k].folder).string();
-  };
+namespace {
 
-  // What an earlier attempt left: finished and failed runs are kept, interrupted ones continue.
-  if (setup.resume) {
-    for (std::size_t k = 0; k < n; ++k) {
+/// The sweep's runs as child processes: what each has done, who runs, and the summary.
+class SweepJobs {
+ public:
+  explicit SweepJobs(const SweepJobsSetup& setup)
+      : setup_(setup),
+        runs_(*setup.runs),
+        scenes_(*setup.scenes),
+        n_(runs_.size()),
+        outcomes_(n_),
+        results_(n_),
+        restart_from_(n_) {}
+
+  int run() {
+    if (setup_.resume) read_earlier_runs();
+    keep_earlier_runs();
+    const InterruptHandler signals;  // forwarded to the children, which checkpoint and stop
+    while (true) {
+      start_runs();
+      if (running_.empty()) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (InterruptHandler::requested()) forward_stop();
+      reap_ended();
+      report_progress();
+    }
+    if (InterruptHandler::requested()) status_ = kExitInterrupted;
+    std::cerr << "summary: " << (fs::path(setup_.out_dir) / "summary.csv").string()
+              << ", summary.h5\n";
+    return status_;
+  }
+
+ private:
+  std::string folder_of(std::size_t k) const {
+    return (fs::path(setup_.out_dir) / runs_[k].folder).string();
+  }
+
+  /// What an earlier attempt left: finished and failed runs are kept, interrupted ones continue.
+  void read_earlier_runs() {
+    for (std::size_t k = 0; k < n_; ++k) {
       const std::string folder = folder_of(k);
       const EarlierRunState earlier = read_earlier_run(folder);
       if (earlier.state == EarlierRun::None) continue;
-      if (scene_body_of_folder(folder) != scene_body_of(scenes[k]))
+      if (scene_body_of_folder(folder) != scene_body_of(scenes_[k]))
         throw SceneError(fmt::format(
             "sweep --resume: '{}' holds a run of another scene than this sweep's run '{}' (was "
             "the study changed? give a new --out, or --overwrite)",
-            folder, runs[k].folder));
+            folder, runs_[k].folder));
       if (earlier.state == EarlierRun::Finished || earlier.state == EarlierRun::Failed) {
-        outcomes[k] = earlier.outcome;
-        if (earlier.state == EarlierRun::Failed) status = kExitNumerical;
+        outcomes_[k] = earlier.outcome;
+        if (earlier.state == EarlierRun::Failed) status_ = kExitNumerical;
         if (earlier.state == EarlierRun::Finished)
-          finished_walls.push_back(earlier.outcome.wall_seconds);
+          finished_walls_.push_back(earlier.outcome.wall_seconds);
       } else if (earlier.state == EarlierRun::Interrupted) {
-        restart_from[k] = earlier.outcome.checkpoint;
+        restart_from_[k] = earlier.outcome.checkpoint;
       }
     }
   }
 
-  const auto write_summary = [&] {
-    SweepSummary summary(setup.sweep->axes, scenes.front(), setup.stations);
-    for (std::size_t k = 0; k < n; ++k)
-      if (outcomes[k]) summary.add(runs[k], *outcomes[k], results[k], k);
-    summary.write(setup.out_dir);
-  };
-  const auto finish = [&](std::size_t k, const RunOutcome& outcome, const char* how_kept) {
-    outcomes[k] = outcome;
-    results[k] =
-        summarise_run(folder_of(k), scenes[k], setup.stations, setup.sweep->lift_threshold);
+  /// The kept runs' results first, so that every summary written holds only complete rows.
+  void keep_earlier_runs() {
+    for (std::size_t k = 0; k < n_; ++k)
+      if (outcomes_[k]) results_[k] = results_of(k);
+    for (std::size_t k = 0; k < n_; ++k)
+      if (outcomes_[k]) finish(k, *outcomes_[k], " (kept from the earlier sweep)");
+  }
+
+  RunResults results_of(std::size_t k) const {
+    return summarise_run(folder_of(k), scenes_[k], setup_.stations, setup_.sweep->lift_threshold);
+  }
+
+  void write_summary() const {
+    SweepSummary summary(setup_.sweep->axes, scenes_.front(), setup_.stations);
+    for (std::size_t k = 0; k < n_; ++k)
+      if (outcomes_[k]) summary.add(runs_[k], *outcomes_[k], results_[k], k);
+    summary.write(setup_.out_dir);
+  }
+
+  void finish(std::size_t k, const RunOutcome& outcome, const char* how_kept) {
+    outcomes_[k] = outcome;
+    results_[k] = results_of(k);
     write_summary();  // after every run: a killed sweep keeps the rows it finished
     const std::string how = outcome.exit_code == kExitSuccess     ? "done"
                             : outcome.exit_code == kExitNumerical ? "numerical failure (exit 3)"
@@ -255,62 +291,57 @@ int run_sweep_jobs(const SweepJobsSetup& setup) {
                                 ? "interrupted by " + outcome.signal + " (exit 4)"
                                 : fmt::format("ended with exit status {}", outcome.exit_code);
     std::cerr << fmt::format("[{}/{}] {}: {}{} after {} steps, t = {:.4e} s, {:.1f} s wall\n",
-                             k + 1, n, runs[k].folder, how, how_kept, outcome.steps, outcome.time,
+                             k + 1, n_, runs_[k].folder, how, how_kept, outcome.steps, outcome.time,
                              outcome.wall_seconds);
-  };
-  // The kept runs' results first: every summary written holds only complete rows.
-  for (std::size_t k = 0; k < n; ++k)
-    if (outcomes[k])
-      results[k] =
-          summarise_run(folder_of(k), scenes[k], setup.stations, setup.sweep->lift_threshold);
-  for (std::size_t k = 0; k < n; ++k)
-    if (outcomes[k]) finish(k, *outcomes[k], " (kept from the earlier sweep)");
+  }
 
-  const InterruptHandler signals;  // forwarded to the children, which checkpoint and stop
-  std::vector<Child> running;
-  std::size_t next = 0;
-  auto last_report = Clock::now();
-  const auto launch = [&](std::size_t k) {
-    const std::string folder = folder_of(k);
-    std::vector<std::string> args{setup.executable, "run"};
-    if (!restart_from[k].empty()) {
-      args.insert(args.end(), {"--restart", restart_from[k]});
+  /// `dustlift run` of run k: a fresh run of its scene, or its checkpoint's continuation.
+  std::vector<std::string> arguments(std::size_t k) const {
+    std::vector<std::string> args{setup_.executable, "run"};
+    if (!restart_from_[k].empty()) {
+      args.insert(args.end(), {"--restart", restart_from_[k]});
     } else {
-      args.push_back(setup.sweep->scene_path);
-      for (const std::string& o : setup.sweep->overrides) args.insert(args.end(), {"--set", o});
-      for (const auto& [key, value] : runs[k].overrides)
+      args.push_back(setup_.sweep->scene_path);
+      for (const std::string& o : setup_.sweep->overrides) args.insert(args.end(), {"--set", o});
+      for (const auto& [key, value] : runs_[k].overrides)
         args.insert(args.end(), {"--set", key + "=" + value});
-      args.insert(args.end(), {"--out", folder, "--overwrite"});
+      args.insert(args.end(), {"--out", folder_of(k), "--overwrite"});
     }
-    args.insert(args.end(), {"--threads", std::to_string(setup.threads_per_run)});
-    running.push_back(Child{k, spawn(args), Clock::now(), false});
-    std::cerr << fmt::format("[{}/{}] {}: {} ({} thread{})\n", k + 1, n, runs[k].folder,
-                             restart_from[k].empty() ? "started" : "continued from its checkpoint",
-                             setup.threads_per_run, setup.threads_per_run == 1 ? "" : "s");
-  };
-  while (true) {
+    args.insert(args.end(), {"--threads", std::to_string(setup_.threads_per_run)});
+    return args;
+  }
+
+  void start_runs() {
     while (!InterruptHandler::requested() &&
-           running.size() < static_cast<std::size_t>(setup.jobs)) {
-      while (next < n && outcomes[next]) ++next;
-      if (next == n) break;
-      launch(next++);
+           running_.size() < static_cast<std::size_t>(setup_.jobs)) {
+      while (next_ < n_ && outcomes_[next_]) ++next_;
+      if (next_ == n_) return;
+      const std::size_t k = next_++;
+      running_.push_back(Child{k, spawn(arguments(k)), Clock::now(), false});
+      std::cerr << fmt::format(
+          "[{}/{}] {}: {} ({} thread{})\n", k + 1, n_, runs_[k].folder,
+          restart_from_[k].empty() ? "started" : "continued from its checkpoint",
+          setup_.threads_per_run, setup_.threads_per_run == 1 ? "" : "s");
     }
-    if (running.empty()) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (InterruptHandler::requested()) {
-      for (Child& c : running) {
-        if (!c.told_to_stop) kill(c.pid, SIGINT);  // the child counts a second one as the same
-        c.told_to_stop = true;
-      }
+  }
+
+  void forward_stop() {
+    for (Child& c : running_) {
+      if (!c.told_to_stop) kill(c.pid, SIGINT);  // the child counts a second one as the same
+      c.told_to_stop = true;
     }
-    for (std::size_t r = 0; r < running.size();) {
+  }
+
+  /// The children that ended: their outcome from their log, their row in the summary.
+  void reap_ended() {
+    for (std::size_t r = 0; r < running_.size();) {
       int wait_status = 0;
-      if (waitpid(running[r].pid, &wait_status, WNOHANG) != running[r].pid) {
+      if (waitpid(running_[r].pid, &wait_status, WNOHANG) != running_[r].pid) {
         ++r;
         continue;
       }
-      const Child c = running[r];
-      running.erase(running.begin() + static_cast<std::ptrdiff_t>(r));
+      const Child c = running_[r];
+      running_.erase(running_.begin() + static_cast<std::ptrdiff_t>(r));
       const int code =
           WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : 128 + WTERMSIG(wait_status);
       RunOutcome outcome = read_earlier_run(folder_of(c.index)).outcome;
@@ -319,38 +350,58 @@ int run_sweep_jobs(const SweepJobsSetup& setup) {
       // else the process's.
       if (code != kExitSuccess || !(outcome.wall_seconds > 0.0))
         outcome.wall_seconds = std::chrono::duration<double>(Clock::now() - c.started).count();
-      if (code == kExitSuccess) finished_walls.push_back(outcome.wall_seconds);
+      if (code == kExitSuccess) finished_walls_.push_back(outcome.wall_seconds);
       finish(c.index, outcome, "");
-      if (code != kExitSuccess && status != kExitInterrupted) status = code;
+      if (code != kExitSuccess && status_ != kExitInterrupted) status_ = code;
       if (code == kExitInterrupted)
         std::cerr << fmt::format(
-            "continue that run with: dustlift sweep ... --resume (or dustlift run --restart {})\n",
+            "continue that run with: dustlift sweep ... --resume (or dustlift run --restart "
+            "{})\n",
             outcome.checkpoint);
     }
-    if (Clock::now() - last_report >= std::chrono::seconds(10) && !running.empty()) {
-      last_report = Clock::now();
-      std::vector<std::pair<double, double>> elapsed_fraction;
-      std::string parts;
-      for (const Child& c : running) {
-        const double elapsed = std::chrono::duration<double>(Clock::now() - c.started).count();
-        const double fraction = progress_fraction(folder_of(c.index)).value_or(0.0);
-        elapsed_fraction.emplace_back(elapsed, fraction);
-        parts += fmt::format("{}{} {:.0f}%", parts.empty() ? "" : ", ", runs[c.index].folder,
-                             100.0 * fraction);
-      }
-      std::size_t queued = 0;
-      for (std::size_t k = next; k < n; ++k) queued += outcomes[k] ? 0 : 1;
-      std::size_t done = 0;
-      for (const auto& o : outcomes) done += o ? 1 : 0;
-      std::cerr << fmt::format(
-          "sweep: {}/{} done, running {}; sweep ETA {}\n", done, n, parts,
-          format_duration(sweep_eta(finished_walls, elapsed_fraction, queued, setup.jobs)));
-    }
   }
-  if (InterruptHandler::requested()) status = kExitInterrupted;
-  std::cerr << "summary: " << (fs::path(setup.out_dir) / "summary.csv").string()
-            << ", summary.h5\n";
-  return status;
+
+  /// Every 10 s: each running run's progress and the whole sweep's remaining time.
+  void report_progress() {
+    if (Clock::now() - last_report_ < std::chrono::seconds(10) || running_.empty()) return;
+    last_report_ = Clock::now();
+    std::vector<std::pair<double, double>> elapsed_fraction;
+    std::string parts;
+    for (const Child& c : running_) {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - c.started).count();
+      const double fraction = progress_fraction(folder_of(c.index)).value_or(0.0);
+      elapsed_fraction.emplace_back(elapsed, fraction);
+      parts += fmt::format("{}{} {:.0f}%", parts.empty() ? "" : ", ", runs_[c.index].folder,
+                           100.0 * fraction);
+    }
+    std::size_t queued = 0, done = 0;
+    for (std::size_t k = 0; k < n_; ++k) {
+      done += outcomes_[k] ? 1 : 0;
+      queued += k >= next_ && !outcomes_[k] ? 1 : 0;
+    }
+    std::cerr << fmt::format(
+        "sweep: {}/{} done, running {}; sweep ETA {}\n", done, n_, parts,
+        format_duration(sweep_eta(finished_walls_, elapsed_fraction, queued, setup_.jobs)));
+  }
+
+  const SweepJobsSetup& setup_;
+  const std::vector<SweepRun>& runs_;
+  const std::vector<Scene>& scenes_;
+  std::size_t n_;
+  std::vector<std::optional<RunOutcome>> outcomes_;
+  std::vector<RunResults> results_;
+  std::vector<std::string> restart_from_;
+  std::vector<double> finished_walls_;
+  std::vector<Child> running_;
+  std::size_t next_ = 0;
+  int status_ = kExitSuccess;
+  Clock::time_point last_report_ = Clock::now();
+};
+
+}  // namespace
+
+int run_sweep_jobs(const SweepJobsSetup& setup) {
+  return SweepJobs(setup).run();
 }
 
 }  // namespace dustlift
