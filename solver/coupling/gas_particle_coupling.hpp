@@ -30,11 +30,11 @@
 #include "solver/coupling/coupling_slab.hpp"
 #include "solver/coupling/deposit_stencils.hpp"
 #include "solver/coupling/effects/effect_list.hpp"
+#include "solver/coupling/gas_halo.hpp"
 #include "solver/coupling/resting_parcels.hpp"
 #include "solver/dem/dem_config.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/gas/gas_config.hpp"
-#include "solver/coupling/gas_halo.hpp"
 #include "solver/gas/gas_solver.hpp"
 
 namespace dustlift {
@@ -146,6 +146,37 @@ class GasParticleCoupling {
 
   // gas_sampling.cpp
   void sample_gas(const GasSolver& gas, ParcelSystem& parcels);
+  /// Parcels sampled together: each field is interpolated at a batch's stencils in one vector
+  /// loop, and each effect runs over the whole batch.
+  static constexpr std::size_t kSampleBatch = 64;
+  /// The rows [j0, j1) and columns [0, i1) the sampled parcels' quads read.
+  void sampled_rows(const ParcelSystem& parcels, int& j0, int& j1, int& i1) const;
+  /// The derived fields the effects read, where the sampled parcels read them (on a slab:
+  /// everywhere, with the cut's ghosts, and the rank copies' sampling positions).
+  void derived_fields_for_sampling(const GasPrimitives& gas, ParcelSystem& parcels);
+  /// What a batch interpolates, in this order (value[field][parcel]); a field no effect reads
+  /// is zero.
+  enum SampledField {
+    kRho,
+    kU,
+    kV,
+    kP,
+    kT,
+    kAlphaP,
+    kVorticity,
+    kDpdx,
+    kDpdy,
+    kDxRhoU,
+    kDyRhoU,
+    kDxRhoV,
+    kDyRhoV,
+    kSampledFields
+  };
+  void interpolate_sampled(const InterpolationBatch<kSampleBatch>& quads, const GasPrimitives& gas,
+                           std::size_t count, double (*value)[kSampleBatch]) const;
+  /// The gas at parcels [k0, k0 + count) and the effects' coefficients from it.
+  void sample_batch(const GasPrimitives& gas, ParcelSystem& parcels, std::size_t k0,
+                    std::size_t count, const StepContext& step) const;
   /// The vorticity and pressure gradient (what the models read) at the cells the sampled
   /// parcels' quads can read, in rows [j0, j1) and columns [0, i1).
   void derivatives_near_parcels(const GasPrimitives& gas, int j0, int j1, int i1);
@@ -192,7 +223,8 @@ class GasParticleCoupling {
   CouplingEffects effects_;
   std::vector<ParcelColumn> stiff_sampled_;
   std::vector<Field2D*> derived_;  ///< derived_fields(), kept (no allocation per step)
-  double largest_diameter_ = 0.0;  ///< m, of the real particles (the finite-size averages' reach)  ///< the sampled stiff coefficients (rank copies')
+  double largest_diameter_ = 0.0;  ///< m, of the real particles (the finite-size averages' reach)
+                                   ///< ///< the sampled stiff coefficients (rank copies')
   std::unique_ptr<GasProperties> props_;
   Columns col_;
 

@@ -124,12 +124,11 @@ void GasParticleCoupling::average_over_particles(const double* x, const double* 
   }
 }
 
-void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
-  const std::size_t active = stepped_.count;
-  const GasPrimitives g = gas.primitives();
+void GasParticleCoupling::sampled_rows(const ParcelSystem& ps, int& j0, int& j1, int& i1) const {
   // The derivatives are needed where the sampled parcels' quads read them: their rows and
   // columns, two cells of margin (the quad and the 3-point stencils).
-  int j0 = 0, j1 = 0, i1 = grid_.nx();
+  const std::size_t active = stepped_.count;
+  j0 = 0, j1 = 0, i1 = grid_.nx();
   // A slab makes them in every cell whatever it steps, and row_range is collective there.
   if (active == ps.size() || slab_) {
     row_range(ps, j0, j1);
@@ -140,9 +139,12 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
   } else {
     i1 = 0;
   }
-  const GasReads& reads = effects_.reads();
-  const bool vort = reads.rotation, pressure = reads.pressure_gradient,
-             momentum = reads.momentum_gradient;
+}
+
+void GasParticleCoupling::derived_fields_for_sampling(const GasPrimitives& g, ParcelSystem& ps) {
+  int j0 = 0, j1 = 0, i1 = 0;
+  sampled_rows(ps, j0, j1, i1);
+  const bool momentum = effects_.reads().momentum_gradient;
   if (!slab_ && cfg_.finite_size) {
     // Averages over the particles read the fields across each sphere: whole rows, widened by
     // the largest radius.
@@ -167,6 +169,7 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
     if (!slab_->derived_fields.empty())
       fill_ghosts(grid_, slab(), slab_->derived_fields, 0, grid_.ny());
     // Rank copies are sampled inside the slab (their samples are their owners', refreshed later).
+    const std::size_t active = stepped_.count;
     std::vector<double>& sample_x = slab_->sample_x;
     sample_x.assign(ps.x.begin(), ps.x.begin() + static_cast<std::ptrdiff_t>(active));
     const double lo = grid_.x().center(0), hi = grid_.x().center(grid_.nx() - 1);
@@ -174,111 +177,112 @@ void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
       if (ps.is_rank_copy(k)) sample_x[k] = std::clamp(sample_x[k], lo, hi);
     }
   }
+}
+
+void GasParticleCoupling::interpolate_sampled(const InterpolationBatch<kSampleBatch>& quads,
+                                              const GasPrimitives& g, std::size_t count,
+                                              double (*value)[kSampleBatch]) const {
+  const GasReads& r = effects_.reads();
+  const Field2D* fields[kSampledFields] = {g.rho,
+                                           g.u,
+                                           g.v,
+                                           g.p,
+                                           g.T,
+                                           &alpha_p_,
+                                           r.rotation ? &vorticity_ : nullptr,
+                                           r.pressure_gradient ? &dpdx_ : nullptr,
+                                           r.pressure_gradient ? &dpdy_ : nullptr,
+                                           r.momentum_gradient ? &dx_rho_u_ : nullptr,
+                                           r.momentum_gradient ? &dy_rho_u_ : nullptr,
+                                           r.momentum_gradient ? &dx_rho_v_ : nullptr,
+                                           r.momentum_gradient ? &dy_rho_v_ : nullptr};
+  for (int f = 0; f < kSampledFields; ++f) {
+    if (fields[f] != nullptr) {
+      quads.apply(*fields[f], value[f]);
+    } else {
+      std::fill(value[f], value[f] + count, 0.0);
+    }
+  }
+}
+
+void GasParticleCoupling::sample_batch(const GasPrimitives& g, ParcelSystem& ps, std::size_t k0,
+                                       std::size_t count, const StepContext& step) const {
+  const GasReads& reads = effects_.reads();
   const double* x_sampled = slab_ ? slab_->sample_x.data() : ps.x.data();
-  const std::size_t n = active;
+  const double* real_d = ps.real_diameter.data();  // each parcel's own real particles
+  std::array<ModelInput, kSampleBatch> in;
+  // The batch's stencils, then each field at all of them (a vector loop per field).
+  InterpolationBatch<kSampleBatch> quads =
+      slab_ ? InterpolationBatch<kSampleBatch>(*slab_->whole, grid_, slab_->first_column)
+            : InterpolationBatch<kSampleBatch>(grid_);
+  quads.push_points(x_sampled + k0, ps.y.data() + k0, count, cfg_.interpolation);
+  alignas(64) double value[kSampledFields][kSampleBatch];
+  interpolate_sampled(quads, g, count, value);
+  for (std::size_t q = 0; q < count; ++q) {
+    const std::size_t k = k0 + q;
+    const double d = real_d[k];
+    GasSample& s = in[q].gas;
+    s.rho = value[kRho][q];
+    s.u = value[kU][q];
+    s.v = value[kV][q];
+    s.p = value[kP][q];
+    s.T = value[kT][q];
+    const GasProperties::At th = props_->thermo(s.T);
+    const TransportProperties tp = props_->transport(s.T, th.cp);
+    s.mu = tp.mu;
+    s.lambda = tp.lambda;
+    s.c = th.c;
+    s.cp = th.cp;
+    s.gamma = th.gamma;
+    s.alpha_g = 1.0 - std::min(value[kAlphaP][q], cfg_.max_volume_fraction);
+    s.vorticity = value[kVorticity][q];
+    s.dpdx = value[kDpdx][q];
+    s.dpdy = value[kDpdy][q];
+    s.dx_rho_u = value[kDxRhoU][q];
+    s.dy_rho_u = value[kDyRhoU][q];
+    s.dx_rho_v = value[kDxRhoV][q];
+    s.dy_rho_v = value[kDyRhoV][q];
+    s.rho_u = s.rho * s.u;
+    s.rho_v = s.rho * s.v;
+    in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d, 1.0 / ps.inv_mass_real[k]};
+    const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
+    in[q].slip = std::sqrt(sx * sx + sy * sy);
+    in[q].re = s.rho * in[q].slip * d / s.mu;
+  }
+  if (cfg_.finite_size && (reads.pressure_gradient || reads.momentum_gradient))
+    average_over_particles(x_sampled + k0, ps.y.data() + k0, real_d + k0, count, in.data());
+  effects_.coefficients(in.data(), k0, count, ps, step);
   double* gu = ps.column(col_.gas_u).data();
   double* gv = ps.column(col_.gas_v).data();
   double* grot = ps.column(col_.gas_rotation).data();
   double* gT = ps.column(col_.gas_T).data();
   double* gp = ps.column(col_.gas_p).data();
-  const double* real_d = ps.real_diameter.data();  // each parcel's own real particles
+  for (std::size_t q = 0; q < count; ++q) {
+    const std::size_t k = k0 + q;
+    const GasSample& s = in[q].gas;
+    gu[k] = s.u;
+    gv[k] = s.v;
+    grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
+    gT[k] = s.T;
+    gp[k] = s.p;
+  }
+}
+
+void GasParticleCoupling::sample_gas(const GasSolver& gas, ParcelSystem& ps) {
+  const GasPrimitives g = gas.primitives();
+  derived_fields_for_sampling(g, ps);
+  const std::size_t n = stepped_.count;
   const StepContext step{ps.time()};
   // Batches of parcels: each is sampled, then every effect runs over the whole batch (one
   // virtual call per effect and batch). Dynamic scheduling: parcels in disturbed gas cost
   // several times those in uniform gas (whose stencils are uniform and whose drag needs no
   // logarithm), and they sit at one end of the x-ordered parcels. Each parcel's result is its
   // own: any schedule and batching gives the same bits.
-  constexpr std::size_t kBatch = 64;
-  const std::size_t batches = (n + kBatch - 1) / kBatch;
+  const std::size_t batches = (n + kSampleBatch - 1) / kSampleBatch;
 #pragma omp parallel for schedule(dynamic, 8) if (n >= kParallelMinimum)
   for (std::size_t b = 0; b < batches; ++b) {
-    std::array<ModelInput, kBatch> in;
-    const std::size_t k0 = b * kBatch, count = std::min(kBatch, n - k0);
-    // The batch's stencils, then each field at all of them (a vector loop per field).
-    InterpolationBatch<kBatch> quads =
-        slab_ ? InterpolationBatch<kBatch>(*slab_->whole, grid_, slab_->first_column)
-              : InterpolationBatch<kBatch>(grid_);
-    quads.push_points(x_sampled + k0, ps.y.data() + k0, count, cfg_.interpolation);
-    enum Sampled {
-      kRho,
-      kU,
-      kV,
-      kP,
-      kT,
-      kAlphaP,
-      kVorticity,
-      kDpdx,
-      kDpdy,
-      kDxRhoU,
-      kDyRhoU,
-      kDxRhoV,
-      kDyRhoV,
-      kFields
-    };
-    alignas(64) double value[kFields][kBatch];
-    const Field2D* fields[kFields] = {g.rho,
-                                      g.u,
-                                      g.v,
-                                      g.p,
-                                      g.T,
-                                      &alpha_p_,
-                                      vort ? &vorticity_ : nullptr,
-                                      pressure ? &dpdx_ : nullptr,
-                                      pressure ? &dpdy_ : nullptr,
-                                      momentum ? &dx_rho_u_ : nullptr,
-                                      momentum ? &dy_rho_u_ : nullptr,
-                                      momentum ? &dx_rho_v_ : nullptr,
-                                      momentum ? &dy_rho_v_ : nullptr};
-    for (int f = 0; f < kFields; ++f) {
-      if (fields[f] != nullptr) {
-        quads.apply(*fields[f], value[f]);
-      } else {
-        std::fill(value[f], value[f] + count, 0.0);
-      }
-    }
-    for (std::size_t q = 0; q < count; ++q) {
-      const std::size_t k = k0 + q;
-      const double d = real_d[k];
-      GasSample& s = in[q].gas;
-      s.rho = value[kRho][q];
-      s.u = value[kU][q];
-      s.v = value[kV][q];
-      s.p = value[kP][q];
-      s.T = value[kT][q];
-      const GasProperties::At th = props_->thermo(s.T);
-      const TransportProperties tp = props_->transport(s.T, th.cp);
-      s.mu = tp.mu;
-      s.lambda = tp.lambda;
-      s.c = th.c;
-      s.cp = th.cp;
-      s.gamma = th.gamma;
-      s.alpha_g = 1.0 - std::min(value[kAlphaP][q], cfg_.max_volume_fraction);
-      s.vorticity = value[kVorticity][q];
-      s.dpdx = value[kDpdx][q];
-      s.dpdy = value[kDpdy][q];
-      s.dx_rho_u = value[kDxRhoU][q];
-      s.dy_rho_u = value[kDyRhoU][q];
-      s.dx_rho_v = value[kDxRhoV][q];
-      s.dy_rho_v = value[kDyRhoV][q];
-      s.rho_u = s.rho * s.u;
-      s.rho_v = s.rho * s.v;
-      in[q].parcel = ParcelAtSample{ps.vx[k], ps.vy[k], ps.omega[k], d, 1.0 / ps.inv_mass_real[k]};
-      const double sx = s.u - ps.vx[k], sy = s.v - ps.vy[k];
-      in[q].slip = std::sqrt(sx * sx + sy * sy);
-      in[q].re = s.rho * in[q].slip * d / s.mu;
-    }
-    if (cfg_.finite_size && (pressure || momentum))
-      average_over_particles(x_sampled + k0, ps.y.data() + k0, real_d + k0, count, in.data());
-    effects_.coefficients(in.data(), k0, count, ps, step);
-    for (std::size_t q = 0; q < count; ++q) {
-      const std::size_t k = k0 + q;
-      const GasSample& s = in[q].gas;
-      gu[k] = s.u;
-      gv[k] = s.v;
-      grot[k] = 0.5 * s.vorticity;  // the fluid spins at half its vorticity
-      gT[k] = s.T;
-      gp[k] = s.p;
-    }
+    const std::size_t k0 = b * kSampleBatch;
+    sample_batch(g, ps, k0, std::min(kSampleBatch, n - k0), step);
   }
   // Every parcel starts the step with nothing exchanged (the resting ones exchange nothing).
   double* exchanged[] = {ps.column(col_.impulse_x).data(), ps.column(col_.impulse_y).data(),
