@@ -120,13 +120,34 @@ ParcelSystem::SkinLimits ParcelSystem::skin_limits() const {
   return l;
 }
 
+double ParcelSystem::listing_reach() const {
+  // Every pair a rebuild can list has a gap below the two skins: 2 r_max + 2 s_max, with
+  // s_max the largest skin any parcel may get now or still move by (the last rebuild's).
+  const SkinLimits limits = skin_limits();
+  double speed_max = 0.0, skin_max = limits.base;
+  const bool built = half_skin.size() == size();
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (is_rank_copy(i)) continue;
+    speed_max = std::max(speed_max, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]));
+    if (built) skin_max = std::max(skin_max, half_skin[i]);
+  }
+  const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
+  const double s_max = ranks_ != nullptr ? ranks_->max(s) : s;
+  return 2.0 * radius_max_ + 2.0 * s_max + pair_reach_;
+}
+
 void ParcelSystem::rebuild_neighbours() {
   counts_known_ = false;  // parcels may have moved between ranks
   update_cell_geometry();
   // A decomposed run first moves parcels to their owners and renews the rank copies; the history
-  // travels with the parcels (redistribute leaves it in old_*).
+  // travels with the parcels (redistribute leaves it carried by the rows).
   const bool distributed = ranks_ != nullptr;
   const bool had_list = distributed ? ranks_->redistribute(*this) : nbr_offset.size() == size() + 1;
+  if (distributed) {
+    old_offset_ = hist_offset_;
+    old_partner_id_ = hist_partner_;
+    old_delta_ = hist_delta_;
+  }
   const std::size_t n = size();
   // Keep the old list's history keyed by partner id (ids survive the re-sort).
   if (had_list && !distributed) {

@@ -48,14 +48,12 @@ bool ParcelSlabs::any(bool value) const {
 }
 
 void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
-  if (ps.cfg_.domain.periodic_x) {
+  if (ps.config().domain.periodic_x) {
     throw std::invalid_argument(
         "ParcelSystem: a periodic channel's parcels cannot be split over ranks");
   }
-  if (ps.ranks_ != nullptr)
-    throw std::logic_error("ParcelSlabs::split: the parcels are split already");
-  ps.ranks_ = this;
-  ps.counts_known_ = false;  // every rank decides the contact pass again, together
+  if (ps.decomposed()) throw std::logic_error("ParcelSlabs::split: the parcels are split already");
+  ps.decompose(*this);
   set_cuts(std::move(cuts));
   const std::size_t n = ps.size();
   ps.order_key.resize(n);
@@ -70,7 +68,7 @@ void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
 }
 
 void ParcelSlabs::update_first_columns(const ParcelSystem& ps) {
-  if (!ps.x_major_) {
+  if (!ps.cells_along_y_first()) {
     throw std::invalid_argument(
         "ParcelSystem: parcels split over ranks need a domain longer than high");
   }
@@ -78,32 +76,17 @@ void ParcelSlabs::update_first_columns(const ParcelSystem& ps) {
   const int ranks = comm_->size();
   first_column_.assign(static_cast<std::size_t>(ranks) + 1, 0);
   for (int q = 1; q < ranks; ++q) {
-    const double c =
-        std::round((cuts_[static_cast<std::size_t>(q - 1)] - ps.cfg_.domain.x_min) / ps.cell_dx_);
+    const double c = std::round(
+        (cuts_[static_cast<std::size_t>(q - 1)] - ps.config().domain.x_min) / ps.cell_width());
     first_column_[static_cast<std::size_t>(q)] =
         std::max(first_column_[static_cast<std::size_t>(q - 1)],
-                 static_cast<int>(std::clamp(c, 0.0, double(ps.cells_x_))));
+                 static_cast<int>(std::clamp(c, 0.0, double(ps.cell_columns()))));
   }
-  first_column_[static_cast<std::size_t>(ranks)] = ps.cells_x_;
+  first_column_[static_cast<std::size_t>(ranks)] = ps.cell_columns();
 }
 
 int ParcelSlabs::copy_reach_columns(const ParcelSystem& ps) const {
-  // Every pair a rebuild can list has a gap below the two skins: 2 r_max + 2 s_max, with
-  // s_max the largest skin any parcel may get now or still move by (the last rebuild's).
-  const ParcelSystem::SkinLimits limits = ps.skin_limits();
-  double speed_max = 0.0, skin_max = limits.base;
-  const bool built = ps.half_skin.size() == ps.size();
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.rank_copy[i] != 0) continue;
-    speed_max = std::max(speed_max, std::sqrt(ps.vx[i] * ps.vx[i] + ps.vy[i] * ps.vy[i]));
-    if (built) skin_max = std::max(skin_max, ps.half_skin[i]);
-  }
-  const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
-  const double s_max = -comm_->min(-s);
-  return static_cast<int>(
-             std::ceil((2.0 * ps.radius_max_ + 2.0 * s_max + ps.pair_reach_ + copy_margin_) /
-                       ps.cell_dx_)) +
-         1;
+  return static_cast<int>(std::ceil((ps.listing_reach() + copy_margin_) / ps.cell_width())) + 1;
 }
 
 void ParcelSlabs::split_replicated(ParcelSystem& ps) {
@@ -118,7 +101,7 @@ void ParcelSlabs::split_replicated(ParcelSystem& ps) {
   const int reach = copy_reach_columns(ps);
   std::vector<int> owner(n), column(n);
   for (std::size_t i = 0; i < n; ++i) {
-    column[i] = cell_column(ps, ps.x[i]);
+    column[i] = ps.cell_column(ps.x[i]);
     owner[i] = owner_of_column(column[i]);
   }
   // needed[q][i]: rank q holds parcel i (as its own or as a copy).
@@ -182,9 +165,7 @@ void ParcelSlabs::split_replicated(ParcelSystem& ps) {
     ps.nbr_delta.swap(delta);
   }
   for (std::size_t i = 0; i < n; ++i) ps.rank_copy[i] = owner[i] != me ? 1 : 0;
-  ps.hist_offset_.assign(n + 1, 0);
-  ps.hist_partner_.clear();
-  ps.hist_delta_.clear();
+  ps.clear_carried_history();
   ps.reorder_parcels(keep);
   if (listed) {
     // Between rebuilds a copy never asks for one (as after a rebuild).
@@ -204,12 +185,6 @@ void ParcelSlabs::set_cuts(std::vector<double> cuts) {
       throw std::invalid_argument("ParcelSlabs::set_cuts: cuts must ascend");
   }
   cuts_ = std::move(cuts);
-}
-
-int ParcelSlabs::cell_column(const ParcelSystem& ps, double px) const {
-  // The cell sort's own expression (neighbour_list.cpp), so that owner and cell agree.
-  return std::clamp(static_cast<int>(std::floor((px - ps.cfg_.domain.x_min) / ps.cell_dx_)), 0,
-                    ps.cells_x_ - 1);
 }
 
 int ParcelSlabs::owner_of_column(int cx) const {
@@ -238,7 +213,7 @@ bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   const std::size_t n0 = ps.size();
   const bool had_list = comm.any(ps.nbr_offset.size() == n0 + 1);
   std::vector<int> owner(n0);
-  for (std::size_t i = 0; i < n0; ++i) owner[i] = owner_of_column(cell_column(ps, ps.x[i]));
+  for (std::size_t i = 0; i < n0; ++i) owner[i] = owner_of_column(ps.cell_column(ps.x[i]));
 
   // 1. Owned parcels leaving this rank, packed with their history (the list is still valid).
   for (auto& b : send_buf_) b.clear();
@@ -268,19 +243,10 @@ bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   for (std::size_t i = 0; i < n0; ++i) {
     if (ps.rank_copy[i] == 0 && owner[i] == me) keep.push_back(static_cast<std::int32_t>(i));
   }
-  ps.hist_offset_.assign(n0 + 1, 0);
-  ps.hist_partner_.clear();
-  ps.hist_delta_.clear();
-  const bool listed_here = had_list && ps.nbr_offset.size() == n0 + 1;
-  for (std::size_t i = 0; i < n0; ++i) {
-    if (listed_here && ps.rank_copy[i] == 0) {
-      for (std::int32_t k = ps.nbr_offset[i]; k < ps.nbr_offset[i + 1]; ++k) {
-        ps.hist_partner_.push_back(
-            ps.id[static_cast<std::size_t>(ps.nbr_index[static_cast<std::size_t>(k)])]);
-        ps.hist_delta_.push_back(ps.nbr_delta[static_cast<std::size_t>(k)]);
-      }
-    }
-    ps.hist_offset_[i + 1] = static_cast<std::int32_t>(ps.hist_partner_.size());
+  if (had_list && ps.nbr_offset.size() == n0 + 1) {
+    ps.carry_listed_history();
+  } else {
+    ps.clear_carried_history();
   }
   ps.reorder_parcels(keep);
 
@@ -328,7 +294,7 @@ bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   // 4. Copies: this rank's parcels within reach of another rank's columns.
   for (auto& b : send_buf_) b.clear();
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    const int cx = cell_column(ps, ps.x[i]);
+    const int cx = ps.cell_column(ps.x[i]);
     for (int q = 0; q < ranks; ++q) {
       if (q == me || !near_rank(cx, q)) continue;
       send_copies_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
@@ -341,9 +307,6 @@ bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   // 5. The table in the one-rank order; the exchange lists follow their rows.
   const std::vector<std::int32_t> by_key = ps.sort_table_by_key();
   follow_rows(by_key);
-  ps.old_offset_ = ps.hist_offset_;
-  ps.old_partner_id_ = ps.hist_partner_;
-  ps.old_delta_ = ps.hist_delta_;
   return had_list;
 }
 

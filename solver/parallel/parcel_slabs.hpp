@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/communicator.hpp"
 #include "solver/dem/parcel_ranks.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 
@@ -63,8 +63,6 @@ class ParcelSlabs final : public ParcelRanks {
   /// The exchange lists after a reorder (old_of_new[k]: the old index of row k).
   void follow_rows(const std::vector<std::int32_t>& old_of_new);
   int owner_of_column(int cx) const;
-  /// The cell sort's column of x (neighbour_list.cpp's own expression, so owner and cell agree).
-  int cell_column(const ParcelSystem& ps, double px) const;
 
   const Communicator* comm_;
   std::vector<double> cuts_;
