@@ -221,6 +221,34 @@ class ParcelSystem : public ParcelTable {
     double base = 0.0, time = 0.0, cap = 0.0;
   };
   SkinLimits skin_limits() const;
+  // rebuild_neighbours' steps (neighbour_list.cpp), in order.
+  /// One rank: the old list's history by partner id in old_*.
+  void key_history_by_partner_id();
+  /// Each parcel's skin (half_skin) and the fast parcels (fast_); returns the largest skin.
+  double assign_skins(const SkinLimits& limits);
+  /// The fast parcels' pairs (fast_pairs_), found in a block wide enough for any partner.
+  void list_fast_pairs(double s_max);
+  /// Where each parcel's fast pairs start, and its slow side's extra slots for them.
+  void index_fast_pairs(double s_base);
+  /// The new list (nbr_*), with the history of pairs listed before when there was a list.
+  void list_partners(double s_base, bool had_list);
+  /// list_partners' per-range steps: the partners of range t of `ranges` into its buffer,
+  /// then the buffer into the list's slots.
+  void list_range(int t, int ranges, double s_base);
+  void fill_range(int t, int ranges, bool had_list);
+  /// The walls each parcel may touch before the next rebuild (wall_mask).
+  void mask_walls();
+  /// The positions of this build and the skins' inverse squares (x_build, y_build, inv_skin2).
+  void mark_build_positions(bool distributed);
+  /// Calls f(j, image) for the parcels in the cells within `block` cells of parcel i's cell,
+  /// in a fixed order (major axis outer, minor inner, parcels in cell order).
+  template <class F>
+  void for_each_nearby(std::size_t i, int block, F&& f) const;
+  /// Whether pair (i, j at periodic image `image`) lies within the two skins and the cohesion.
+  bool within_listing_reach(std::size_t i, std::int32_t j, int image) const;
+  /// Calls f(j, image) for every partner a rebuild lists for parcel i.
+  template <class F>
+  void for_each_partner(std::size_t i, double s_base, F&& f) const;
   void sort_by_cell(bool permute_data);
   void compute_contacts(double dt);
   /// The contact pass. Mixed: parcels of different real counts meet (the pair rule);
