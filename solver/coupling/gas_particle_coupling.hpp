@@ -202,6 +202,16 @@ class GasParticleCoupling {
   /// equilibrium transfer when it is fast. Conservation is unaffected: the gas receives
   /// exactly what the parcels get.
   void apply_implicit_exchange(const GasSolver& gas, ParcelSystem& parcels, double dt);
+  /// Its steps: every parcel's coefficients and capacities summed into the cells of columns
+  /// [0, c] it reaches; each such cell's factors (rows [0, j1), columns [0, nx)); on a slab,
+  /// the neighbours' factors in the ghost cells; each stepped parcel's coefficients scaled
+  /// by its stencil's average factors.
+  void sum_implicit_cells(const ParcelSystem& parcels, int c, const double* K_raw,
+                          const double* H_raw);
+  void implicit_factors(const GasSolver& gas, double dt, int j1, int nx);
+  void share_implicit_factors(int j1);
+  void scale_by_implicit_factors(const ParcelSystem& parcels, std::size_t active, double* K,
+                                 double* H) const;
 
   // coupling_deposits.cpp
   /// The alpha_p deposit after the step planned by RestingParcels (the parcels
@@ -221,10 +231,9 @@ class GasParticleCoupling {
   /// V_p of each size class, same expression (a polydisperse layer; empty: one class).
   std::vector<double> class_volume_;
   CouplingEffects effects_;
-  std::vector<ParcelColumn> stiff_sampled_;
-  std::vector<Field2D*> derived_;  ///< derived_fields(), kept (no allocation per step)
+  std::vector<ParcelColumn> stiff_sampled_;  ///< the sampled stiff coefficients (rank copies')
+  std::vector<Field2D*> derived_;            ///< derived_fields(), kept (no allocation per step)
   double largest_diameter_ = 0.0;  ///< m, of the real particles (the finite-size averages' reach)
-                                   ///< ///< the sampled stiff coefficients (rank copies')
   std::unique_ptr<GasProperties> props_;
   Columns col_;
 

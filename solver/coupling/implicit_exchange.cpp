@@ -31,6 +31,14 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
   const double* H_raw = heat.empty() ? nullptr : ps.column(heat[0].sampled).data();
   double* K = momentum.empty() ? nullptr : ps.column(momentum[0].applied).data();
   double* H = heat.empty() ? nullptr : ps.column(heat[0].applied).data();
+  sum_implicit_cells(ps, c, K_raw, H_raw);
+  implicit_factors(gas, dt, j1, c + 1);
+  if (slab_) share_implicit_factors(j1);
+  scale_by_implicit_factors(ps, active, K, H);
+}
+
+void GasParticleCoupling::sum_implicit_cells(const ParcelSystem& ps, int c, const double* K_raw,
+                                             const double* H_raw) {
   // Per-cell sums over all parcels (the resting ones' samples are current), each in parcel
   // order (thread-independent).
   const double c_p = dem_cfg_.heat_capacity;
@@ -47,9 +55,11 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
     r.mass += f * mass[k];
     r.heat_capacity += f * mass[k] * c_p;
   });
+}
+
+void GasParticleCoupling::implicit_factors(const GasSolver& gas, double dt, int j1, int nx) {
   const Field2D& gas_mass_density = gas.conserved(0);  // alpha_g rho
   const GasPrimitives g = gas.primitives();
-  const int nx = c + 1;
   // Rows one at a time: the cells holding parcels are mostly in the layer's few rows at the
   // bottom, which a static split gave to one thread. Every cell on its own.
 #pragma omp parallel for schedule(dynamic, \
@@ -65,28 +75,33 @@ void GasParticleCoupling::apply_implicit_exchange(const GasSolver& gas, ParcelSy
       r.heat = 1.0 / (1.0 + dt * r.heat * (1.0 / (m_gas * cv_gas) + 1.0 / r.heat_capacity));
     }
   }
-  if (slab_) {
-    // A parcel at the cut reads the neighbour's factors too.
-    Field2D& drag_factor = slab_->drag_factor;
-    Field2D& heat_factor = slab_->heat_factor;
-    for (int j = 0; j < j1; ++j) {
-      for (int i = 0; i < grid_.nx(); ++i) {
-        drag_factor(i, j) = implicit_[grid_.index(i, j)].drag;
-        heat_factor(i, j) = implicit_[grid_.index(i, j)].heat;
-      }
+}
+
+void GasParticleCoupling::share_implicit_factors(int j1) {
+  // A parcel at the cut reads the neighbour's factors too.
+  Field2D& drag_factor = slab_->drag_factor;
+  Field2D& heat_factor = slab_->heat_factor;
+  for (int j = 0; j < j1; ++j) {
+    for (int i = 0; i < grid_.nx(); ++i) {
+      drag_factor(i, j) = implicit_[grid_.index(i, j)].drag;
+      heat_factor(i, j) = implicit_[grid_.index(i, j)].heat;
     }
-    Field2D* const factors[] = {&drag_factor, &heat_factor};
-    fill_ghosts(grid_, slab(), factors, 0, j1);
-    const int ng = grid_.ghosts();
-    for (int j = 0; j < j1; ++j) {
-      for (int k = 1; k <= ng; ++k) {
-        for (const int i : {-k, grid_.nx() - 1 + k}) {
-          implicit_[grid_.index(i, j)].drag = drag_factor(i, j);
-          implicit_[grid_.index(i, j)].heat = heat_factor(i, j);
-        }
+  }
+  Field2D* const factors[] = {&drag_factor, &heat_factor};
+  fill_ghosts(grid_, slab(), factors, 0, j1);
+  const int ng = grid_.ghosts();
+  for (int j = 0; j < j1; ++j) {
+    for (int k = 1; k <= ng; ++k) {
+      for (const int i : {-k, grid_.nx() - 1 + k}) {
+        implicit_[grid_.index(i, j)].drag = drag_factor(i, j);
+        implicit_[grid_.index(i, j)].heat = heat_factor(i, j);
       }
     }
   }
+}
+
+void GasParticleCoupling::scale_by_implicit_factors(const ParcelSystem& ps, std::size_t active,
+                                                    double* K, double* H) const {
   const std::size_t n = active;
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t k = 0; k < n; ++k) {

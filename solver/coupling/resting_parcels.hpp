@@ -66,6 +66,24 @@ class RestingParcels {
   /// grid's reference state, and first_resting per row in the whole grid's columns, as one
   /// rank finds them.
   void agree_over_slabs(const GasSolver& gas, const Grid2D& grid, const CouplingSlab& slab);
+  /// plan's steps. The x beyond which the gas over a parcel rests, per row (rest_x_threshold_);
+  /// returns the largest over the rows.
+  double update_row_thresholds(const Grid2D& grid, const Axis& ax);
+  /// The front (the largest x of a parcel not at rest two steps running), the largest speed
+  /// and the largest diameter.
+  struct RestFront {
+    double front, v_max, d_max;
+  };
+  /// Counts each parcel's steps at rest on (rest_steps); returns the front.
+  RestFront count_rest_steps(const ParcelSystem& ps, double dt, const Grid2D& grid,
+                             double* rest_steps, double all_rows) const;
+  /// The parcels up to the last one a push from the front may reach within the step.
+  static std::size_t last_within_reach(const ParcelSystem& ps, double dt, const Axis& ax,
+                                       const double* rest_steps, const RestFront& f,
+                                       double influence_width);
+  /// Marks parcels [0, limit) active; where they are.
+  static SteppedParcels mark_active(const ParcelSystem& ps, const Grid2D& grid, double* active,
+                                    std::size_t limit);
 
   GasSolver::RestingGas resting_;
   double rest_p_ = 0.0, rest_T_ = 0.0;    ///< the reference the rest_steps counts refer to

@@ -80,184 +80,233 @@ void ParcelSystem::compute_contacts(double dt) {
   (this->*kPasses[which])(dt);
 }
 
+namespace {
+
+/// A wall the parcels meet: its slot, the outward normal from the parcel towards the wall,
+/// and the wall plane.
+struct ActiveWall {
+  int slot;
+  double nx, ny, pos;
+};
+
+/// One parcel of the contact pass: its state, and its force sums per real particle.
+struct ContactParcel {
+  std::size_t i;
+  double x, y, vx, vy, r, rw;  ///< rw = r omega
+  double fx = 0.0, fy = 0.0, tq = 0.0;
+};
+
+/// The contact pass's laws and columns (ParcelSystem::contacts_pass), and what it does for
+/// one parcel. Its members are inlined into the pass's loop: no call per parcel or pair.
+template <bool Mixed, bool PairDamping, bool Cohesive>
+struct ContactKernel {
+  ContactParams pc, wc;
+  double lx, dt;
+  bool pair_follows, wall_follows;
+  double pair_factor, wall_factor;
+  CohesionParams coh, wcoh;
+  bool pair_cohesion, wall_cohesion;
+  double pair_reach, wall_reach;
+  ActiveWall walls[kWallCount];
+  int n_walls;
+  const double *px, *py, *pvx, *pvy, *pw, *pr, *pn, *pim, *prd;
+  const std::int32_t *ids, *off, *nj;
+  const std::int8_t* nim;
+  double *ndelta, *wdelta, *fx_out, *fy_out, *tq_out;
+  const std::uint8_t* wmask;
+  const std::uint8_t* copy;  ///< null on one rank
+
+  [[gnu::always_inline]] inline void parcel(std::size_t i) const {
+    // A rank copy's forces are its owner's (its state is refreshed after every sub-step).
+    if (copy != nullptr && copy[i] != 0) {
+      fx_out[i] = fy_out[i] = tq_out[i] = 0.0;
+      return;
+    }
+    ContactParcel p{i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
+    for (std::int32_t k = off[i]; k < off[i + 1]; ++k) pair(p, k);
+    const unsigned mask = wmask[i];
+    for (int w = 0; w < n_walls && mask != 0; ++w) {
+      if ((mask & (1u << walls[w].slot)) != 0) wall(p, walls[w]);
+    }
+    fx_out[i] = p.fx;
+    fy_out[i] = p.fy;
+    tq_out[i] = p.tq;
+  }
+
+  /// Adds one pair's per-real-particle force on i (the pair rule between counts).
+  [[gnu::always_inline]] inline void add_pair(ContactParcel& p, std::int32_t j, double pfx,
+                                              double pfy, double ptq) const {
+    const std::size_t i = p.i;
+    if (!Mixed || pn[j] == pn[i]) {
+      p.fx += pfx;
+      p.fy += pfy;
+      p.tq += ptq;
+    } else {
+      // Parcels of different real counts (size classes, or file parcels of different
+      // diameters): the pair stands for min(n_i, n_j) real contacts, so each side's
+      // per-real-particle force is scaled by min(n_i, n_j) / n_i and the parcels' totals
+      // n_i F_i = -n_j F_j are equal and opposite (docs/dem.md, "Polydisperse layers").
+      const double share = std::min(pn[i], pn[j]) / pn[i];
+      p.fx += pfx * share;
+      p.fy += pfy * share;
+      p.tq += ptq * share;
+    }
+  }
+
+  /// The pair in neighbour slot k.
+  [[gnu::always_inline]] inline void pair(ContactParcel& p, std::int32_t k) const {
+    const std::size_t i = p.i;
+    const std::int32_t j = nj[k];
+    const double rj = pr[j];
+    const double dx = (px[j] + nim[k] * lx) - p.x, dy = py[j] - p.y;
+    const double rs = p.r + rj;
+    const double d2 = dx * dx + dy * dy;
+    if (d2 >= rs * rs) {
+      // Not touching: the tangential spring is released (written only when it held
+      // something: most slots are idle, and stores to them dominated the profile).
+      if (ndelta[k] != 0.0) ndelta[k] = 0.0;
+      if constexpr (Cohesive) {
+        // The van der Waals tail across the gap, up to the cut-off.
+        const double reach = rs + pair_reach;
+        if (pair_cohesion && pair_reach > 0.0 && d2 < reach * reach) {
+          const double dist = std::sqrt(d2);
+          const double f =
+              van_der_waals_force(coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]), dist - rs);
+          add_pair(p, j, f * dx / dist, f * dy / dist, 0.0);
+        }
+      }
+      return;
+    }
+    const double dist = std::sqrt(d2);
+    // Coincident centres have no normal; pick one from the ids so both sides agree.
+    double nx, ny;
+    if (dist > 0.0) {
+      nx = dx / dist;
+      ny = dy / dist;
+    } else {
+      nx = 0.0;
+      ny = ids[i] < ids[j] ? 1.0 : -1.0;
+    }
+    const double wsum = p.rw + rj * pw[j];
+    // u_ij = u_j - u_i - (r_i w_i + r_j w_j) z x n, z x n = (-ny, nx)  (§3.6)
+    const double ux = (pvx[j] - p.vx) + wsum * ny;
+    const double uy = (pvy[j] - p.vy) - wsum * nx;
+    ContactParams law = pc;
+    if constexpr (PairDamping) {
+      if (pair_follows)
+        law.damping =
+            pair_damping(pair_factor, pair_effective_mass(pim[i], pim[j], pn[i], pn[j]), pc.k_n);
+    }
+    ContactResult c = contact_force(law, nx, ny, rs - dist, ux, uy, ndelta[k], p.r, dt);
+    ndelta[k] = c.delta_t;
+    if constexpr (Cohesive) {
+      // Attraction along n, towards j; the Coulomb limit above saw the spring-dashpot load,
+      // which holds the adhesion (DMT).
+      if (pair_cohesion) {
+        const double f = pull_off_force(coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]));
+        c.fx += f * nx;
+        c.fy += f * ny;
+      }
+    }
+    add_pair(p, j, c.fx, c.fy, c.torque);
+  }
+
+  /// The parcel against a wall within its reach.
+  [[gnu::always_inline]] inline void wall(ContactParcel& p, const ActiveWall& w) const {
+    const std::size_t i = p.i;
+    double& delta = wdelta[i * kWallCount + w.slot];
+    // Only one of (nx, ny) is non-zero; the distance along it is what matters.
+    const double gap = w.nx != 0.0 ? w.nx * (w.pos - p.x) : w.ny * (w.pos - p.y);
+    if (gap >= p.r) {
+      if (delta != 0.0) delta = 0.0;
+      if constexpr (Cohesive) {
+        if (wall_cohesion && gap - p.r < wall_reach) {
+          const double f = van_der_waals_force(wcoh, 0.5 * prd[i], gap - p.r);
+          p.fx += f * w.nx;
+          p.fy += f * w.ny;
+        }
+      }
+      return;
+    }
+    // The wall is at rest: u = -u_i - r_i w_i z x n.
+    const double ux = -p.vx + p.rw * w.ny;
+    const double uy = -p.vy - p.rw * w.nx;
+    ContactParams law = wc;
+    if constexpr (PairDamping) {
+      if (wall_follows) law.damping = pair_damping(wall_factor, 1.0 / pim[i], wc.k_n);
+    }
+    const ContactResult c = contact_force(law, w.nx, w.ny, p.r - gap, ux, uy, delta, p.r, dt);
+    delta = c.delta_t;
+    p.fx += c.fx;
+    p.fy += c.fy;
+    p.tq += c.torque;
+    if constexpr (Cohesive) {
+      if (wall_cohesion) {
+        // A sphere and a plane: R* = the real particle's radius.
+        const double f = pull_off_force(wcoh, 0.5 * prd[i]);
+        p.fx += f * w.nx;
+        p.fy += f * w.ny;
+      }
+    }
+  }
+};
+
+}  // namespace
+
 template <bool Mixed, bool PairDamping, bool Cohesive>
 void ParcelSystem::contacts_pass(double dt) {
   const std::size_t n = stepped_count();
-  const ContactParams pc = cfg_.contact;
-  const ContactParams wc = cfg_.wall_contact;
-  const double lx = length_x_;
+  ContactKernel<Mixed, PairDamping, Cohesive> k;
+  k.pc = cfg_.contact;
+  k.wc = cfg_.wall_contact;
+  k.lx = length_x_;
+  k.dt = dt;
   // A given restitution: the dashpot of each pair (and of each parcel at a wall) follows its
   // reduced mass, h = c(e) sqrt(m_eff k_n) (docs/dem.md, "Restitution").
-  const bool pair_follows = PairDamping && pc.restitution > 0.0;
-  const bool wall_follows = PairDamping && wc.restitution > 0.0;
-  const double pair_factor = pair_damping_factor_, wall_factor = wall_damping_factor_;
+  k.pair_follows = PairDamping && k.pc.restitution > 0.0;
+  k.wall_follows = PairDamping && k.wc.restitution > 0.0;
+  k.pair_factor = pair_damping_factor_;
+  k.wall_factor = wall_damping_factor_;
   // Van der Waals cohesion per real pair (laws/cohesion.hpp): held at its pull-off force while
   // the parcels overlap, and down to the cut-off across a gap.
-  const CohesionParams coh = cfg_.cohesion;
-  const CohesionParams wcoh = cfg_.wall_cohesion;
-  const bool pair_cohesion = Cohesive && coh.enabled();
-  const bool wall_cohesion = Cohesive && wcoh.enabled();
-  const double pair_reach = pair_reach_, wall_reach = wall_reach_;
-  // Active walls: outward normal from the parcel towards the wall, and the wall plane.
-  struct ActiveWall {
-    int slot;
-    double nx, ny, pos;
-  };
-  ActiveWall walls[kWallCount];
-  int n_walls = 0;
+  k.coh = cfg_.cohesion;
+  k.wcoh = cfg_.wall_cohesion;
+  k.pair_cohesion = Cohesive && k.coh.enabled();
+  k.wall_cohesion = Cohesive && k.wcoh.enabled();
+  k.pair_reach = pair_reach_;
+  k.wall_reach = wall_reach_;
+  k.n_walls = 0;
   const DemDomain& d = cfg_.domain;
-  if (d.wall_bottom) walls[n_walls++] = {0, 0.0, -1.0, wall_position(0)};
-  if (d.wall_top) walls[n_walls++] = {1, 0.0, 1.0, wall_position(1)};
-  if (d.wall_left) walls[n_walls++] = {2, -1.0, 0.0, wall_position(2)};
-  if (d.wall_right) walls[n_walls++] = {3, 1.0, 0.0, wall_position(3)};
-
-  const double* __restrict px = x.data();
-  const double* __restrict py = y.data();
-  const double* __restrict pvx = vx.data();
-  const double* __restrict pvy = vy.data();
-  const double* __restrict pw = omega.data();
-  const double* __restrict pr = radius.data();
-  const double* __restrict pn = n_real.data();
-  const double* __restrict pim = inv_mass_real.data();
-  const double* __restrict prd = real_diameter.data();
-  const std::int32_t* __restrict off = nbr_offset.data();
-  const std::int32_t* __restrict nj = nbr_index.data();
-  const std::int8_t* __restrict nim = nbr_image.data();
-  double* __restrict ndelta = nbr_delta.data();
-  double* __restrict wdelta = wall_delta.data();
-  double* __restrict fx_out = contact_fx.data();
-  double* __restrict fy_out = contact_fy.data();
-  double* __restrict tq_out = contact_torque.data();
-  const std::uint8_t* __restrict wmask = wall_mask.data();
-  // A rank copy's forces are its owner's (its state is refreshed after every sub-step).
-  const std::uint8_t* __restrict copy = rank_copy.empty() ? nullptr : rank_copy.data();
-
+  if (d.wall_bottom) k.walls[k.n_walls++] = {0, 0.0, -1.0, wall_position(0)};
+  if (d.wall_top) k.walls[k.n_walls++] = {1, 0.0, 1.0, wall_position(1)};
+  if (d.wall_left) k.walls[k.n_walls++] = {2, -1.0, 0.0, wall_position(2)};
+  if (d.wall_right) k.walls[k.n_walls++] = {3, 1.0, 0.0, wall_position(3)};
+  k.px = x.data();
+  k.py = y.data();
+  k.pvx = vx.data();
+  k.pvy = vy.data();
+  k.pw = omega.data();
+  k.pr = radius.data();
+  k.pn = n_real.data();
+  k.pim = inv_mass_real.data();
+  k.prd = real_diameter.data();
+  k.ids = id.data();
+  k.off = nbr_offset.data();
+  k.nj = nbr_index.data();
+  k.nim = nbr_image.data();
+  k.ndelta = nbr_delta.data();
+  k.wdelta = wall_delta.data();
+  k.fx_out = contact_fx.data();
+  k.fy_out = contact_fy.data();
+  k.tq_out = contact_torque.data();
+  k.wmask = wall_mask.data();
+  k.copy = rank_copy.empty() ? nullptr : rank_copy.data();
   // Dynamic chunks: contacts cluster where the layer is disturbed, at one end of the x-ordered
-  // parcels. Each parcel gathers its own forces: any schedule gives the same bits.
-#pragma omp parallel for schedule(dynamic, 1024) if (n >= kParallelMinimum)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (copy != nullptr && copy[i] != 0) {
-      fx_out[i] = fy_out[i] = tq_out[i] = 0.0;
-      continue;
-    }
-    const double xi = px[i], yi = py[i], vxi = pvx[i], vyi = pvy[i], ri = pr[i];
-    const double rwi = ri * pw[i];
-    double fx = 0.0, fy = 0.0, tq = 0.0;
-    // Adds one pair's per-real-particle force on i (the pair rule between counts).
-    auto add_pair = [&](std::int32_t j, double pfx, double pfy, double ptq) {
-      if (!Mixed || pn[j] == pn[i]) {
-        fx += pfx;
-        fy += pfy;
-        tq += ptq;
-      } else {
-        // Parcels of different real counts (size classes, or file parcels of different
-        // diameters): the pair stands for min(n_i, n_j) real contacts, so each side's
-        // per-real-particle force is scaled by min(n_i, n_j) / n_i and the parcels' totals
-        // n_i F_i = -n_j F_j are equal and opposite (docs/dem.md, "Polydisperse layers").
-        const double share = std::min(pn[i], pn[j]) / pn[i];
-        fx += pfx * share;
-        fy += pfy * share;
-        tq += ptq * share;
-      }
-    };
-    for (std::int32_t k = off[i]; k < off[i + 1]; ++k) {
-      const std::int32_t j = nj[k];
-      const double rj = pr[j];
-      const double dx = (px[j] + nim[k] * lx) - xi, dy = py[j] - yi;
-      const double rs = ri + rj;
-      const double d2 = dx * dx + dy * dy;
-      if (d2 >= rs * rs) {
-        // Not touching: the tangential spring is released (written only when it held
-        // something: most slots are idle, and stores to them dominated the profile).
-        if (ndelta[k] != 0.0) ndelta[k] = 0.0;
-        if constexpr (Cohesive) {
-          // The van der Waals tail across the gap, up to the cut-off.
-          const double reach = rs + pair_reach;
-          if (pair_cohesion && pair_reach > 0.0 && d2 < reach * reach) {
-            const double dist = std::sqrt(d2);
-            const double f = van_der_waals_force(
-                coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]), dist - rs);
-            add_pair(j, f * dx / dist, f * dy / dist, 0.0);
-          }
-        }
-        continue;
-      }
-      const double dist = std::sqrt(d2);
-      // Coincident centres have no normal; pick one from the ids so both sides agree.
-      double nx, ny;
-      if (dist > 0.0) {
-        nx = dx / dist;
-        ny = dy / dist;
-      } else {
-        nx = 0.0;
-        ny = id[i] < id[j] ? 1.0 : -1.0;
-      }
-      const double wsum = rwi + rj * pw[j];
-      // u_ij = u_j - u_i - (r_i w_i + r_j w_j) z x n, z x n = (-ny, nx)  (§3.6)
-      const double ux = (pvx[j] - vxi) + wsum * ny;
-      const double uy = (pvy[j] - vyi) - wsum * nx;
-      ContactParams law = pc;
-      if constexpr (PairDamping) {
-        if (pair_follows)
-          law.damping =
-              pair_damping(pair_factor, pair_effective_mass(pim[i], pim[j], pn[i], pn[j]), pc.k_n);
-      }
-      ContactResult c = contact_force(law, nx, ny, rs - dist, ux, uy, ndelta[k], ri, dt);
-      ndelta[k] = c.delta_t;
-      if constexpr (Cohesive) {
-        // Attraction along n, towards j; the Coulomb limit above saw the spring-dashpot load,
-        // which holds the adhesion (DMT).
-        if (pair_cohesion) {
-          const double f = pull_off_force(coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]));
-          c.fx += f * nx;
-          c.fy += f * ny;
-        }
-      }
-      add_pair(j, c.fx, c.fy, c.torque);
-    }
-    const unsigned mask = wmask[i];
-    for (int w = 0; w < n_walls && mask != 0; ++w) {
-      const ActiveWall& wall = walls[w];
-      if ((mask & (1u << wall.slot)) == 0) continue;
-      double& delta = wdelta[i * kWallCount + wall.slot];
-      // Only one of (nx, ny) is non-zero; the distance along it is what matters.
-      const double gap = wall.nx != 0.0 ? wall.nx * (wall.pos - xi) : wall.ny * (wall.pos - yi);
-      if (gap >= ri) {
-        if (delta != 0.0) delta = 0.0;
-        if constexpr (Cohesive) {
-          if (wall_cohesion && gap - ri < wall_reach) {
-            const double f = van_der_waals_force(wcoh, 0.5 * prd[i], gap - ri);
-            fx += f * wall.nx;
-            fy += f * wall.ny;
-          }
-        }
-        continue;
-      }
-      // The wall is at rest: u = -u_i - r_i w_i z x n.
-      const double ux = -vxi + rwi * wall.ny;
-      const double uy = -vyi - rwi * wall.nx;
-      ContactParams law = wc;
-      if constexpr (PairDamping) {
-        if (wall_follows) law.damping = pair_damping(wall_factor, 1.0 / pim[i], wc.k_n);
-      }
-      const ContactResult c = contact_force(law, wall.nx, wall.ny, ri - gap, ux, uy, delta, ri, dt);
-      delta = c.delta_t;
-      fx += c.fx;
-      fy += c.fy;
-      tq += c.torque;
-      if constexpr (Cohesive) {
-        if (wall_cohesion) {
-          // A sphere and a plane: R* = the real particle's radius.
-          const double f = pull_off_force(wcoh, 0.5 * prd[i]);
-          fx += f * wall.nx;
-          fy += f * wall.ny;
-        }
-      }
-    }
-    fx_out[i] = fx;
-    fy_out[i] = fy;
-    tq_out[i] = tq;
-  }
+  // parcels. Each parcel gathers its own forces: any schedule gives the same bits. Each thread
+  // its own copy of the kernel: its members are then locals the compiler keeps in registers
+  // (through the shared one they would be reloaded after every store).
+#pragma omp parallel for schedule(dynamic, 1024) firstprivate(k) if (n >= kParallelMinimum)
+  for (std::size_t i = 0; i < n; ++i) k.parcel(i);
 }
 
 namespace {

@@ -115,15 +115,21 @@ void accelerate(const E& e, std::size_t i, SubstepParcel& p, Vec2 f, Vec2 g) {
   }
 }
 
+/// What a pack of effects adds, taken together.
+template <class... E>
+struct PackRoles {
+  static constexpr bool kExchanges = (false || ... || E::kExchanges);
+  static constexpr bool kLocal = (false || ... || E::kLocal);
+  static constexpr bool kTorque = (false || ... || E::kTorque);
+  static constexpr bool kHeat = (false || ... || E::kHeat);
+  static constexpr int kInertia = (0 + ... + static_cast<int>(E::kInertia));
+  static_assert(kInertia <= 1, "at most one effect may change the parcels' inertia");
+};
+
 template <bool Store, class... E, std::size_t... K>
 double forced_euler(const EulerArrays& a, std::size_t n, double dt, std::index_sequence<K...>,
                     const E&... effects) {
-  constexpr bool kExchanges = (false || ... || E::kExchanges);
-  constexpr bool kLocal = (false || ... || E::kLocal);
-  constexpr bool kTorque = (false || ... || E::kTorque);
-  constexpr bool kHeat = (false || ... || E::kHeat);
-  constexpr int kInertia = (0 + ... + static_cast<int>(E::kInertia));
-  static_assert(kInertia <= 1, "at most one effect may change the parcels' inertia");
+  using Roles = PackRoles<E...>;
   // Local restrict copies (through the struct the compiler would assume aliasing).
   double* __restrict px = a.x;
   double* __restrict py = a.y;
@@ -153,11 +159,11 @@ double forced_euler(const EulerArrays& a, std::size_t n, double dt, std::index_s
     Parts<typename E::Part...> part;
     (force(effects, i, p, get<K>(part)), ...);
     double fx = p.exchanged_x, fy = p.exchanged_y;
-    if constexpr (kLocal) {
+    if constexpr (Roles::kLocal) {
       fx += p.local_x;
       fy += p.local_y;
     }
-    if constexpr (kInertia == 1) {
+    if constexpr (Roles::kInertia == 1) {
       (accelerate(effects, i, p, Vec2{cfx[i] + fx, cfy[i] + fy}, Vec2{gx, gy}), ...);
       p.vx_new = p.vx + dt * p.ax;
       p.vy_new = p.vy + dt * p.ay;
@@ -168,16 +174,16 @@ double forced_euler(const EulerArrays& a, std::size_t n, double dt, std::index_s
     pvx[i] = p.vx_new;
     pvy[i] = p.vy_new;
     (after(effects, i, p, get<K>(part)), ...);
-    if constexpr (kExchanges) {
+    if constexpr (Roles::kExchanges) {
       const double ex = p.exchanged_x, ey = p.exchanged_y;
       jx[i] += ex * dt;
       jy[i] += ey * dt;
       work[i] += (ex * 0.5 * (p.vx + p.vx_new) + ey * 0.5 * (p.vy + p.vy_new)) * dt;
     }
     double tq = ctq[i];
-    if constexpr (kTorque) tq += p.torque;
+    if constexpr (Roles::kTorque) tq += p.torque;
     pw[i] = p.omega + dt * tq * ii[i];
-    if constexpr (kHeat) {
+    if constexpr (Roles::kHeat) {
       const double q = p.heat;
       pT[i] += dt * q * im[i] * inv_c;  // eq. (7)
       heat[i] += q * dt;

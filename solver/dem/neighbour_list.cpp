@@ -120,22 +120,35 @@ ParcelSystem::SkinLimits ParcelSystem::skin_limits() const {
   return l;
 }
 
+double ParcelSystem::listing_reach() const {
+  // Every pair a rebuild can list has a gap below the two skins: 2 r_max + 2 s_max, with
+  // s_max the largest skin any parcel may get now or still move by (the last rebuild's).
+  const SkinLimits limits = skin_limits();
+  double speed_max = 0.0, skin_max = limits.base;
+  const bool built = half_skin.size() == size();
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (is_rank_copy(i)) continue;
+    speed_max = std::max(speed_max, std::sqrt(vx[i] * vx[i] + vy[i] * vy[i]));
+    if (built) skin_max = std::max(skin_max, half_skin[i]);
+  }
+  const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
+  const double s_max = ranks_ != nullptr ? ranks_->max(s) : s;
+  return 2.0 * radius_max_ + 2.0 * s_max + pair_reach_;
+}
+
 void ParcelSystem::rebuild_neighbours() {
   counts_known_ = false;  // parcels may have moved between ranks
   update_cell_geometry();
   // A decomposed run first moves parcels to their owners and renews the rank copies; the history
-  // travels with the parcels (redistribute leaves it in old_*).
+  // travels with the parcels (redistribute leaves it carried by the rows).
   const bool distributed = ranks_ != nullptr;
   const bool had_list = distributed ? ranks_->redistribute(*this) : nbr_offset.size() == size() + 1;
-  const std::size_t n = size();
-  // Keep the old list's history keyed by partner id (ids survive the re-sort).
-  if (had_list && !distributed) {
-    old_offset_.swap(nbr_offset);
-    old_delta_.swap(nbr_delta);
-    const std::size_t slots = nbr_index.size();
-    old_partner_id_.resize(slots);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-    for (std::size_t k = 0; k < slots; ++k) old_partner_id_[k] = id[nbr_index[k]];
+  if (distributed) {
+    old_offset_ = hist_offset_;
+    old_partner_id_ = hist_partner_;
+    old_delta_ = hist_delta_;
+  } else if (had_list) {
+    key_history_by_partner_id();
   }
   // The data are re-sorted by cell every kSortEvery rebuilds (and at the first): moving 40
   // columns costs more than the list itself, and memory order decays slowly.
@@ -143,15 +156,35 @@ void ParcelSystem::rebuild_neighbours() {
   const bool permuted = !had_list || rebuilds_ % kSortEvery == 0;
   sort_by_cell(permuted);  // old_index_[new] = old
   if (distributed) ranks_->after_sort(*this, old_index_, permuted);
+  const SkinLimits limits = skin_limits();
+  const double s_max = assign_skins(limits);
+  list_fast_pairs(s_max);
+  index_fast_pairs(limits.base);
+  list_partners(limits.base, had_list);
+  mask_walls();
+  mark_build_positions(distributed);
+  needs_rebuild_ = false;
+  ++rebuilds_;
+}
 
-  const DemDomain& d = cfg_.domain;
-  const bool periodic = d.periodic_x;
+void ParcelSystem::key_history_by_partner_id() {
+  // Ids survive the re-sort; indices do not.
+  const std::size_t n = size();
+  old_offset_.swap(nbr_offset);
+  old_delta_.swap(nbr_delta);
+  const std::size_t slots = nbr_index.size();
+  old_partner_id_.resize(slots);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (std::size_t k = 0; k < slots; ++k) old_partner_id_[k] = id[nbr_index[k]];
+}
+
+double ParcelSystem::assign_skins(const SkinLimits& limits) {
   // Per-parcel skin (the distance a parcel may move before the list is rebuilt): the base
   // skin/2 for most parcels, more for the fast ones so that one parcel blown through the gas
   // does not make every parcel's list be rebuilt every few sub-steps. A pair is listed when
   // its gap is below s_i + s_j, so no contact can be missed before one of them has moved
   // its own skin (integrate() then asks for a rebuild).
-  const SkinLimits limits = skin_limits();
+  const std::size_t n = size();
   const double s_base = limits.base, s_time = limits.time, s_cap = limits.cap;
   half_skin.resize(n);
   double s_max = s_base;
@@ -162,45 +195,49 @@ void ParcelSystem::rebuild_neighbours() {
     half_skin[i] = s;
     s_max = std::max(s_max, s);
   }
-  if (distributed) s_max = ranks_->max(s_max);
+  if (ranks_ != nullptr) s_max = ranks_->max(s_max);
   fast_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (half_skin[i] > s_base) fast_.push_back(static_cast<std::int32_t>(i));
   }
+  return s_max;
+}
 
-  // Visits the parcels of the cells within `block` cells of parcel i's cell in a fixed order
-  // (major axis outer, minor inner, parcels in cell order) and calls f(j, image).
-  auto for_each_nearby = [&](std::size_t i, int block, auto&& f) {
-    const int c = cell_of_[i];
-    const int cx = box_x0_ + (x_major_ ? c / box_ny_ : c % box_nx_);
-    const int cy = box_y0_ + (x_major_ ? c % box_ny_ : c / box_nx_);
-    for (int outer = -block; outer <= block; ++outer) {
-      for (int inner = -block; inner <= block; ++inner) {
-        const int ddx = x_major_ ? outer : inner, ddy = x_major_ ? inner : outer;
-        const int ry = cy + ddy;
-        if (ry < 0 || ry >= cells_y_) continue;
-        int rx = cx + ddx;
-        int image = 0;
-        if (rx < 0 || rx >= cells_x_) {
-          if (!periodic) continue;
-          image = rx < 0 ? -1 : 1;
-          rx -= image * cells_x_;
-        }
-        if (!in_box(rx, ry)) continue;  // no parcels there
-        const int cell = cell_index(rx, ry);
-        for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
-          const std::int32_t j = members_[static_cast<std::size_t>(q)];
-          if (static_cast<std::size_t>(j) != i) f(j, image);
-        }
+template <class F>
+void ParcelSystem::for_each_nearby(std::size_t i, int block, F&& f) const {
+  const bool periodic = cfg_.domain.periodic_x;
+  const int c = cell_of_[i];
+  const int cx = box_x0_ + (x_major_ ? c / box_ny_ : c % box_nx_);
+  const int cy = box_y0_ + (x_major_ ? c % box_ny_ : c / box_nx_);
+  for (int outer = -block; outer <= block; ++outer) {
+    for (int inner = -block; inner <= block; ++inner) {
+      const int ddx = x_major_ ? outer : inner, ddy = x_major_ ? inner : outer;
+      const int ry = cy + ddy;
+      if (ry < 0 || ry >= cells_y_) continue;
+      int rx = cx + ddx;
+      int image = 0;
+      if (rx < 0 || rx >= cells_x_) {
+        if (!periodic) continue;
+        image = rx < 0 ? -1 : 1;
+        rx -= image * cells_x_;
+      }
+      if (!in_box(rx, ry)) continue;  // no parcels there
+      const int cell = cell_index(rx, ry);
+      for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
+        const std::int32_t j = members_[static_cast<std::size_t>(q)];
+        if (static_cast<std::size_t>(j) != i) f(j, image);
       }
     }
-  };
-  auto listed = [&](std::size_t i, std::int32_t j, int image) {
-    const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
-    const double reach = radius[i] + radius[j] + half_skin[i] + half_skin[j] + pair_reach_;
-    return ddx * ddx + ddy * ddy < reach * reach;
-  };
+  }
+}
 
+bool ParcelSystem::within_listing_reach(std::size_t i, std::int32_t j, int image) const {
+  const double ddx = x[j] + image * length_x_ - x[i], ddy = y[j] - y[i];
+  const double reach = radius[i] + radius[j] + half_skin[i] + half_skin[j] + pair_reach_;
+  return ddx * ddx + ddy * ddy < reach * reach;
+}
+
+void ParcelSystem::list_fast_pairs(double s_max) {
   // Fast parcels search a block wide enough for any partner; the pairs they find are listed
   // on both sides (a slow partner would not find them in its 3x3 block).
   const double min_cell = std::min(cell_dx_, cell_dy_);
@@ -221,7 +258,7 @@ void ParcelSystem::rebuild_neighbours() {
       const double r = 2.0 * radius_max_ + half_skin[i] + s_max + pair_reach_;
       const int block = std::max(1, static_cast<int>(std::ceil(r / min_cell)));
       for_each_nearby(i, block, [&](std::int32_t j, int image) {
-        if (listed(i, j, image))
+        if (within_listing_reach(i, j, image))
           mine.push_back({static_cast<std::int32_t>(i), j, static_cast<std::int8_t>(image)});
       });
     }
@@ -229,7 +266,11 @@ void ParcelSystem::rebuild_neighbours() {
   fast_pairs_.clear();
   for (const auto& part : fast_pairs_by_thread_)
     fast_pairs_.insert(fast_pairs_.end(), part.begin(), part.end());
+}
+
+void ParcelSystem::index_fast_pairs(double s_base) {
   // Slow partners of fast parcels, sorted by (slow parcel, fast parcel): their extra slots.
+  const std::size_t n = size();
   extra_pairs_.clear();
   for (const FastPair& fp : fast_pairs_) {
     if (half_skin[static_cast<std::size_t>(fp.j)] <= s_base) {
@@ -245,86 +286,106 @@ void ParcelSystem::rebuild_neighbours() {
   fast_start_.assign(n + 1, 0);
   for (const FastPair& fp : fast_pairs_) ++fast_start_[static_cast<std::size_t>(fp.i) + 1];
   for (std::size_t i = 0; i < n; ++i) fast_start_[i + 1] += fast_start_[i];
+}
 
-  // Slow parcels: slow partners from the 3x3 block, then the fast ones that found them.
-  auto for_each_partner = [&](std::size_t i, auto&& f) {
-    if (half_skin[i] > s_base) {
-      for (std::int32_t k = fast_start_[i]; k < fast_start_[i + 1]; ++k) {
-        const FastPair& fp = fast_pairs_[static_cast<std::size_t>(k)];
-        f(fp.j, fp.image);
-      }
-      return;
+template <class F>
+void ParcelSystem::for_each_partner(std::size_t i, double s_base, F&& f) const {
+  // Fast parcels: the pairs they found. Slow parcels: slow partners from the 3x3 block, then
+  // the fast ones that found them.
+  if (half_skin[i] > s_base) {
+    for (std::int32_t k = fast_start_[i]; k < fast_start_[i + 1]; ++k) {
+      const FastPair& fp = fast_pairs_[static_cast<std::size_t>(k)];
+      f(fp.j, fp.image);
     }
-    for_each_nearby(i, 1, [&](std::int32_t j, int image) {
-      if (half_skin[static_cast<std::size_t>(j)] <= s_base && listed(i, j, image)) f(j, image);
-    });
-    for (std::int32_t k = extra_start_[i]; k < extra_start_[i + 1]; ++k) {
-      const FastPair& e = extra_pairs_[static_cast<std::size_t>(k)];
-      f(e.j, e.image);
-    }
-  };
+    return;
+  }
+  for_each_nearby(i, 1, [&](std::int32_t j, int image) {
+    if (half_skin[static_cast<std::size_t>(j)] <= s_base && within_listing_reach(i, j, image))
+      f(j, image);
+  });
+  for (std::int32_t k = extra_start_[i]; k < extra_start_[i + 1]; ++k) {
+    const FastPair& e = extra_pairs_[static_cast<std::size_t>(k)];
+    f(e.j, e.image);
+  }
+}
 
+namespace {
+
+/// Range t of `ranges` contiguous ranges over n parcels: [i0, i1).
+void parcel_range(std::size_t n, int t, int ranges, std::size_t& i0, std::size_t& i1) {
+  i0 = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(ranges);
+  i1 = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(ranges);
+}
+
+}  // namespace
+
+void ParcelSystem::list_partners(double s_base, bool had_list) {
   // One search per parcel: the parcels are cut into one contiguous range per thread, each
   // range lists its partners into its own buffer, then the buffers are joined in parcel
   // order (the same list whatever the thread count) and the history of pairs listed before
   // is carried over.
+  const std::size_t n = size();
   nbr_offset.resize(n + 1);
   nbr_offset[0] = 0;
   const int ranges = n >= kParallelMinimum ? std::max(1, omp_get_max_threads()) : 1;
   list_by_range_.resize(static_cast<std::size_t>(ranges));
-  auto range = [&](int t, std::size_t& i0, std::size_t& i1) {
-    i0 = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(ranges);
-    i1 = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(ranges);
-  };
   // Over the ranges, not the threads: every range is listed however many threads come.
 #pragma omp parallel for schedule(static, 1) num_threads(ranges) if (ranges > 1)
-  for (int t = 0; t < ranges; ++t) {
-    std::size_t i0 = 0, i1 = 0;
-    range(t, i0, i1);
-    std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
-    mine.clear();
-    for (std::size_t i = i0; i < i1; ++i) {
-      const std::size_t before = mine.size();
-      for_each_partner(i, [&](std::int32_t j, int image) {
-        mine.push_back({j, static_cast<std::int8_t>(image)});
-      });
-      nbr_offset[i + 1] = static_cast<std::int32_t>(mine.size() - before);
-    }
-  }
+  for (int t = 0; t < ranges; ++t) list_range(t, ranges, s_base);
   for (std::size_t i = 0; i < n; ++i) nbr_offset[i + 1] += nbr_offset[i];
   const std::size_t slots = static_cast<std::size_t>(nbr_offset[n]);
   nbr_index.resize(slots);
   nbr_image.resize(slots);
   nbr_delta.resize(slots);
 #pragma omp parallel for schedule(static, 1) num_threads(ranges) if (ranges > 1)
-  for (int t = 0; t < ranges; ++t) {
-    std::size_t i0 = 0, i1 = 0;
-    range(t, i0, i1);
-    const std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
-    const auto first = static_cast<std::size_t>(nbr_offset[i0]);
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-      nbr_index[first + k] = mine[k].j;
-      nbr_image[first + k] = mine[k].image;
-      nbr_delta[first + k] = 0.0;
-    }
-    if (had_list) {
-      for (std::size_t i = i0; i < i1; ++i) {
-        // Carry over the history of pairs that were listed before.
-        const std::int32_t o = old_index_[i];
-        for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
-          const std::int32_t pid = id[nbr_index[s]];
-          for (std::int32_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
-            if (old_partner_id_[q] == pid) {
-              nbr_delta[s] = old_delta_[q];
-              break;
-            }
-          }
+  for (int t = 0; t < ranges; ++t) fill_range(t, ranges, had_list);
+}
+
+void ParcelSystem::list_range(int t, int ranges, double s_base) {
+  std::size_t i0 = 0, i1 = 0;
+  parcel_range(size(), t, ranges, i0, i1);
+  std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
+  mine.clear();
+  for (std::size_t i = i0; i < i1; ++i) {
+    const std::size_t before = mine.size();
+    for_each_partner(i, s_base, [&](std::int32_t j, int image) {
+      mine.push_back({j, static_cast<std::int8_t>(image)});
+    });
+    nbr_offset[i + 1] = static_cast<std::int32_t>(mine.size() - before);
+  }
+}
+
+void ParcelSystem::fill_range(int t, int ranges, bool had_list) {
+  std::size_t i0 = 0, i1 = 0;
+  parcel_range(size(), t, ranges, i0, i1);
+  const std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
+  const auto first = static_cast<std::size_t>(nbr_offset[i0]);
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    nbr_index[first + k] = mine[k].j;
+    nbr_image[first + k] = mine[k].image;
+    nbr_delta[first + k] = 0.0;
+  }
+  if (!had_list) return;
+  for (std::size_t i = i0; i < i1; ++i) {
+    // Carry over the history of pairs that were listed before.
+    const std::int32_t o = old_index_[i];
+    for (std::int32_t s = nbr_offset[i]; s < nbr_offset[i + 1]; ++s) {
+      const std::int32_t pid = id[nbr_index[s]];
+      for (std::int32_t q = old_offset_[o]; q < old_offset_[o + 1]; ++q) {
+        if (old_partner_id_[q] == pid) {
+          nbr_delta[s] = old_delta_[q];
+          break;
         }
       }
     }
   }
+}
+
+void ParcelSystem::mask_walls() {
   // Walls each parcel may touch before the next rebuild (it moves less than its skin until
   // then, and less than a skin per step, so a wall contact also gets its end seen).
+  const std::size_t n = size();
+  const DemDomain& d = cfg_.domain;
   wall_mask.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
@@ -340,8 +401,12 @@ void ParcelSystem::rebuild_neighbours() {
     }
     wall_mask[i] = mask;
   }
+}
+
+void ParcelSystem::mark_build_positions(bool distributed) {
   // The positions of this build and the skins' inverse squares, in parallel (no allocation:
   // same sizes as before).
+  const std::size_t n = size();
   x_build.resize(n);
   y_build.resize(n);
   inv_skin2.resize(n);
@@ -357,8 +422,6 @@ void ParcelSystem::rebuild_neighbours() {
       if (rank_copy[i] != 0) inv_skin2[i] = 0.0;
     }
   }
-  needs_rebuild_ = false;
-  ++rebuilds_;
 }
 
 }  // namespace dustlift

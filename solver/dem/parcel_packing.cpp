@@ -64,6 +64,29 @@ void ParcelSystem::reorder_parcels(const std::vector<std::int32_t>& source) {
   hist_delta_.swap(delta);
 }
 
+void ParcelSystem::clear_carried_history() {
+  hist_offset_.assign(size() + 1, 0);
+  hist_partner_.clear();
+  hist_delta_.clear();
+}
+
+void ParcelSystem::carry_listed_history() {
+  const std::size_t n = size();
+  hist_offset_.assign(n + 1, 0);
+  hist_partner_.clear();
+  hist_delta_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!is_rank_copy(i)) {
+      for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
+        hist_partner_.push_back(
+            id[static_cast<std::size_t>(nbr_index[static_cast<std::size_t>(k)])]);
+        hist_delta_.push_back(nbr_delta[static_cast<std::size_t>(k)]);
+      }
+    }
+    hist_offset_[i + 1] = static_cast<std::int32_t>(hist_partner_.size());
+  }
+}
+
 std::vector<std::int32_t> ParcelSystem::sort_table_by_key() {
   std::vector<std::int32_t> by_key(size());
   std::iota(by_key.begin(), by_key.end(), 0);
@@ -88,9 +111,7 @@ void ParcelSystem::assign_packed(const std::vector<std::vector<double>>& pieces)
   rank_copy.assign(size(), 0);
   x_build.resize(size());
   y_build.resize(size());
-  hist_offset_.assign(size() + 1, 0);
-  hist_partner_.clear();
-  hist_delta_.clear();
+  clear_carried_history();
   reorder_parcels(none);
   half_skin.clear();
   wall_mask.clear();
@@ -121,6 +142,11 @@ void ParcelSystem::assign_packed(const std::vector<std::vector<double>>& pieces)
   order_key.clear();
   rank_copy.clear();
   counts_known_ = false;
+}
+
+void ParcelSystem::decompose(ParcelRanks& ranks) {
+  ranks_ = &ranks;
+  counts_known_ = false;  // every rank decides the contact pass again, together
 }
 
 void ParcelSystem::drop_decomposition() {

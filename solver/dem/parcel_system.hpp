@@ -14,7 +14,9 @@
 // Determinism: every parcel gathers its own contacts in neighbour-list order (each pair is
 // evaluated from both sides, bitwise symmetrically); no atomics, no reductions other than
 // max. Results are identical for any OpenMP thread count.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -138,6 +140,9 @@ class ParcelSystem : public ParcelTable {
 
   // ---- Parcels split over ranks (solver/parallel/parcel_slabs.hpp splits them) ----
   bool decomposed() const { return ranks_ != nullptr; }
+  /// From now on `ranks` splits the parcels (it must outlive the split): the rebuilds, the
+  /// sub-step decisions and the rank copies go through it. drop_decomposition undoes it.
+  void decompose(ParcelRanks& ranks);
   /// Collective when split: the rank copies take their owners' values of these attached columns
   /// now (the coupling's samples and exchange sums, which the owners compute).
   void refresh_rank_copies(std::span<const ParcelColumn> columns);
@@ -168,6 +173,28 @@ class ParcelSystem : public ParcelTable {
   void reorder_parcels(const std::vector<std::int32_t>& source);
   /// Sorts the table by order key; returns the rows' old indices in their new order.
   std::vector<std::int32_t> sort_table_by_key();
+  /// Every row carries no contact history.
+  void clear_carried_history();
+  /// Each own parcel's listed partners (by id) and elongations become the history its row
+  /// carries (rank copies carry none); the list must be current.
+  void carry_listed_history();
+
+  // ---- The neighbour cells, which a split over ranks cuts along ----
+  /// Sizes the cells for the current parcels (at least the largest cutoff, over every rank's
+  /// parcels); every rebuild does this first.
+  void update_cell_geometry();
+  int cell_columns() const { return cells_x_; }
+  double cell_width() const { return cell_dx_; }
+  /// Whether the cells are numbered along y first (the domain is longer than high).
+  bool cells_along_y_first() const { return x_major_; }
+  /// The cell column of x as the cell sort finds it (so a split and the cells agree).
+  int cell_column(double px) const {
+    return std::clamp(static_cast<int>(std::floor((px - cfg_.domain.x_min) / cell_dx_)), 0,
+                      cells_x_ - 1);
+  }
+  /// Collective when split: the largest centre distance at which a rebuild may list a pair
+  /// now, from the skins any own parcel may get or still move by.
+  double listing_reach() const;
 
   /// Checkpoint access to the DEM's counters (see ParcelInternals).
   ParcelInternals internals() const;
@@ -194,10 +221,35 @@ class ParcelSystem : public ParcelTable {
     double base = 0.0, time = 0.0, cap = 0.0;
   };
   SkinLimits skin_limits() const;
-  /// The neighbour cells (size >= the largest cutoff, over every rank's parcels).
-  void update_cell_geometry();
+  // rebuild_neighbours' steps (neighbour_list.cpp), in order.
+  /// One rank: the old list's history by partner id in old_*.
+  void key_history_by_partner_id();
+  /// Each parcel's skin (half_skin) and the fast parcels (fast_); returns the largest skin.
+  double assign_skins(const SkinLimits& limits);
+  /// The fast parcels' pairs (fast_pairs_), found in a block wide enough for any partner.
+  void list_fast_pairs(double s_max);
+  /// Where each parcel's fast pairs start, and its slow side's extra slots for them.
+  void index_fast_pairs(double s_base);
+  /// The new list (nbr_*), with the history of pairs listed before when there was a list.
+  void list_partners(double s_base, bool had_list);
+  /// list_partners' per-range steps: the partners of range t of `ranges` into its buffer,
+  /// then the buffer into the list's slots.
+  void list_range(int t, int ranges, double s_base);
+  void fill_range(int t, int ranges, bool had_list);
+  /// The walls each parcel may touch before the next rebuild (wall_mask).
+  void mask_walls();
+  /// The positions of this build and the skins' inverse squares (x_build, y_build, inv_skin2).
+  void mark_build_positions(bool distributed);
+  /// Calls f(j, image) for the parcels in the cells within `block` cells of parcel i's cell,
+  /// in a fixed order (major axis outer, minor inner, parcels in cell order).
+  template <class F>
+  void for_each_nearby(std::size_t i, int block, F&& f) const;
+  /// Whether pair (i, j at periodic image `image`) lies within the two skins and the cohesion.
+  bool within_listing_reach(std::size_t i, std::int32_t j, int image) const;
+  /// Calls f(j, image) for every partner a rebuild lists for parcel i.
+  template <class F>
+  void for_each_partner(std::size_t i, double s_base, F&& f) const;
   void sort_by_cell(bool permute_data);
-  friend class ParcelSlabs;  // moves the rows and the carried history at rebuilds
   void compute_contacts(double dt);
   /// The contact pass. Mixed: parcels of different real counts meet (the pair rule);
   /// PairDamping: a restitution is given, so the dashpot follows each pair's reduced mass;

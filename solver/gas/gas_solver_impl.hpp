@@ -112,6 +112,10 @@ struct GasSolver::Impl {
   }
   template <class Th>
   void refresh(const Th& th);
+  /// The primitives from cell index c on.
+  RowPrimitives row_primitives(std::size_t c) {
+    return {rho.data() + c, u.data() + c, v.data() + c, p.data() + c, T.data() + c};
+  }
   /// The conserved state, porosity and primitives of cells [i0, i1) of row j.
   PrimitiveRow primitive_row(int j, int i0, int i1) {
     const std::size_t c = at(i0, j);
@@ -119,11 +123,7 @@ struct GasSolver::Impl {
              U[Conserved::kMomentumY].data() + c, U[Conserved::kEnergy].data() + c},
             alpha.data() + c,
             R,
-            rho.data() + c,
-            u.data() + c,
-            v.data() + c,
-            p.data() + c,
-            T.data() + c,
+            row_primitives(c),
             i1 - i0};
   }
 

@@ -92,11 +92,7 @@ void GasSolver::Impl::update_row(const Th& th, int j, double dt, double c_new) {
   r.gas_constant = R;
   r.gravity_x = config.gravity_x;
   r.gravity_y = config.gravity_y;
-  r.rho = rho.data() + c;
-  r.u = u.data() + c;
-  r.v = v.data() + c;
-  r.p = p.data() + c;
-  r.T = T.data() + c;
+  r.prim = row_primitives(c);
   r.n = i1 - i0;
   save_step_start(j, i0, i1);
   const int bad = stage_update_row(th, r, stage_scratch(), dt, c_new);

@@ -103,6 +103,20 @@ template <int PressureAxis>
   return -1;
 }
 
+/// The new state's primitives from its conserved state U and porosity: decoded, T(e)
+/// warm-started at the current T, and written where the state changed; returns the first
+/// faulty cell or -1.
+template <class Thermo>
+int new_primitives(const Thermo& th, const double* const* U, const double* alpha, double R,
+                   const RowPrimitives& prim, const StageScratch& s, int n) {
+  constexpr int kM = Conserved::kMass, kMX = Conserved::kMomentumX, kMY = Conserved::kMomentumY,
+                kE = Conserved::kEnergy;
+  decode_pass(U[kM], U[kMX], U[kMY], U[kE], alpha, s.rho, s.u, s.v, s.e, n);
+  th.temperatures(s.e, prim.T, s.T, n);
+  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, R, U[kM], U[kMX], U[kMY], U[kE], prim.rho,
+                     prim.u, prim.v, prim.p, prim.T, n);
+}
+
 }  // namespace
 
 template <class Thermo>
@@ -125,29 +139,21 @@ int stage_update_row(const Thermo& th, const StageRow& r, const StageScratch& s,
   variable_pass<0>(r.fx[kM], r.fy_below[kM], r.fy_above[kM], source[kM], r.inv_dx, r.inv_dy, none,
                    none, none, none, none, none, r.U0[kM], r.U[kM], s.changed, dt, c_new, n);
   variable_pass<1>(r.fx[kMX], r.fy_below[kMX], r.fy_above[kMX], source[kMX], r.inv_dx, r.inv_dy,
-                   r.fx_pressure, r.fx_pressure + 1, r.alpha - 1, r.alpha, r.alpha + 1, r.p,
+                   r.fx_pressure, r.fx_pressure + 1, r.alpha - 1, r.alpha, r.alpha + 1, r.prim.p,
                    r.U0[kMX], r.U[kMX], s.changed, dt, c_new, n);
   variable_pass<2>(r.fx[kMY], r.fy_below[kMY], r.fy_above[kMY], source[kMY], r.inv_dx, r.inv_dy,
                    r.fy_pressure_below, r.fy_pressure_above, r.alpha_below, r.alpha, r.alpha_above,
-                   r.p, r.U0[kMY], r.U[kMY], s.changed, dt, c_new, n);
+                   r.prim.p, r.U0[kMY], r.U[kMY], s.changed, dt, c_new, n);
   variable_pass<0>(r.fx[kE], r.fy_below[kE], r.fy_above[kE], source[kE], r.inv_dx, r.inv_dy, none,
                    none, none, none, none, none, r.U0[kE], r.U[kE], s.changed, dt, c_new, n);
-  decode_pass(r.U[kM], r.U[kMX], r.U[kMY], r.U[kE], r.alpha, s.rho, s.u, s.v, s.e, n);
-  th.temperatures(s.e, r.T, s.T, n);
-  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[kM], r.U[kMX], r.U[kMY],
-                     r.U[kE], r.rho, r.u, r.v, r.p, r.T, n);
+  return new_primitives(th, r.U, r.alpha, r.gas_constant, r.prim, s, n);
 }
 
 template <class Thermo>
 int primitives_row(const Thermo& th, const PrimitiveRow& r, const StageScratch& s) {
   const int n = r.n;
   if (n <= 0) return -1;
-  constexpr int kM = Conserved::kMass, kMX = Conserved::kMomentumX, kMY = Conserved::kMomentumY,
-                kE = Conserved::kEnergy;
-  decode_pass(r.U[kM], r.U[kMX], r.U[kMY], r.U[kE], r.alpha, s.rho, s.u, s.v, s.e, n);
-  th.temperatures(s.e, r.T, s.T, n);
-  return commit_pass(s.changed, s.rho, s.u, s.v, s.T, r.gas_constant, r.U[kM], r.U[kMX], r.U[kMY],
-                     r.U[kE], r.rho, r.u, r.v, r.p, r.T, n);
+  return new_primitives(th, r.U, r.alpha, r.gas_constant, r.prim, s, n);
 }
 
 template int stage_update_row<CaloricallyPerfectGas>(const CaloricallyPerfectGas&, const StageRow&,

@@ -18,6 +18,16 @@ namespace dustlift {
 class CaloricallyPerfectGas;
 class ThermallyPerfectAir;
 
+/// The primitives of a row segment: read (p for the pressure term, T as the Newton guess) and
+/// overwritten with those of the new state where it changed.
+struct RowPrimitives {
+  double* rho;
+  double* u;
+  double* v;
+  double* p;
+  double* T;
+};
+
 /// Pointers into the solver's arrays at the first cell of the segment (cell index i0):
 /// every per-cell pointer may be indexed [0, n), the x-face arrays [0, n] (face k lies on the
 /// left of cell k), the y-face arrays [0, n) for the faces below and above the row. Arrays of
@@ -40,13 +50,7 @@ struct StageRow {
   double gas_constant;
   double gravity_x = 0.0;  ///< m/s^2, body force on the gas (GasConfig::gravity_x)
   double gravity_y = 0.0;
-  // Primitives of the row: read (p for the pressure term, T as the Newton guess) and
-  // overwritten with those of the new state where it changed.
-  double* rho;
-  double* u;
-  double* v;
-  double* p;
-  double* T;
+  RowPrimitives prim;
   int n;
 };
 
@@ -81,11 +85,7 @@ struct PrimitiveRow {
   const double* U[Conserved::kCount];
   const double* alpha;
   double gas_constant;
-  double* rho;
-  double* u;
-  double* v;
-  double* p;
-  double* T;
+  RowPrimitives prim;
   int n;
 };
 template <class Thermo>

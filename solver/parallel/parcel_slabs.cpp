@@ -48,14 +48,12 @@ bool ParcelSlabs::any(bool value) const {
 }
 
 void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
-  if (ps.cfg_.domain.periodic_x) {
+  if (ps.config().domain.periodic_x) {
     throw std::invalid_argument(
         "ParcelSystem: a periodic channel's parcels cannot be split over ranks");
   }
-  if (ps.ranks_ != nullptr)
-    throw std::logic_error("ParcelSlabs::split: the parcels are split already");
-  ps.ranks_ = this;
-  ps.counts_known_ = false;  // every rank decides the contact pass again, together
+  if (ps.decomposed()) throw std::logic_error("ParcelSlabs::split: the parcels are split already");
+  ps.decompose(*this);
   set_cuts(std::move(cuts));
   const std::size_t n = ps.size();
   ps.order_key.resize(n);
@@ -70,7 +68,7 @@ void ParcelSlabs::split(ParcelSystem& ps, std::vector<double> cuts) {
 }
 
 void ParcelSlabs::update_first_columns(const ParcelSystem& ps) {
-  if (!ps.x_major_) {
+  if (!ps.cells_along_y_first()) {
     throw std::invalid_argument(
         "ParcelSystem: parcels split over ranks need a domain longer than high");
   }
@@ -78,32 +76,17 @@ void ParcelSlabs::update_first_columns(const ParcelSystem& ps) {
   const int ranks = comm_->size();
   first_column_.assign(static_cast<std::size_t>(ranks) + 1, 0);
   for (int q = 1; q < ranks; ++q) {
-    const double c =
-        std::round((cuts_[static_cast<std::size_t>(q - 1)] - ps.cfg_.domain.x_min) / ps.cell_dx_);
+    const double c = std::round(
+        (cuts_[static_cast<std::size_t>(q - 1)] - ps.config().domain.x_min) / ps.cell_width());
     first_column_[static_cast<std::size_t>(q)] =
         std::max(first_column_[static_cast<std::size_t>(q - 1)],
-                 static_cast<int>(std::clamp(c, 0.0, double(ps.cells_x_))));
+                 static_cast<int>(std::clamp(c, 0.0, double(ps.cell_columns()))));
   }
-  first_column_[static_cast<std::size_t>(ranks)] = ps.cells_x_;
+  first_column_[static_cast<std::size_t>(ranks)] = ps.cell_columns();
 }
 
 int ParcelSlabs::copy_reach_columns(const ParcelSystem& ps) const {
-  // Every pair a rebuild can list has a gap below the two skins: 2 r_max + 2 s_max, with
-  // s_max the largest skin any parcel may get now or still move by (the last rebuild's).
-  const ParcelSystem::SkinLimits limits = ps.skin_limits();
-  double speed_max = 0.0, skin_max = limits.base;
-  const bool built = ps.half_skin.size() == ps.size();
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.rank_copy[i] != 0) continue;
-    speed_max = std::max(speed_max, std::sqrt(ps.vx[i] * ps.vx[i] + ps.vy[i] * ps.vy[i]));
-    if (built) skin_max = std::max(skin_max, ps.half_skin[i]);
-  }
-  const double s = std::max(skin_max, std::clamp(speed_max * limits.time, limits.base, limits.cap));
-  const double s_max = -comm_->min(-s);
-  return static_cast<int>(
-             std::ceil((2.0 * ps.radius_max_ + 2.0 * s_max + ps.pair_reach_ + copy_margin_) /
-                       ps.cell_dx_)) +
-         1;
+  return static_cast<int>(std::ceil((ps.listing_reach() + copy_margin_) / ps.cell_width())) + 1;
 }
 
 void ParcelSlabs::split_replicated(ParcelSystem& ps) {
@@ -113,33 +96,11 @@ void ParcelSlabs::split_replicated(ParcelSystem& ps) {
   const SecondsSince timer(counters_.seconds);
   ps.update_cell_geometry();
   update_first_columns(ps);
-  const int ranks = comm_->size(), me = comm_->rank();
+  const int me = comm_->rank();
   const std::size_t n = ps.size();
   const int reach = copy_reach_columns(ps);
-  std::vector<int> owner(n), column(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    column[i] = cell_column(ps, ps.x[i]);
-    owner[i] = owner_of_column(column[i]);
-  }
-  // needed[q][i]: rank q holds parcel i (as its own or as a copy).
-  std::vector<std::vector<std::uint8_t>> needed(static_cast<std::size_t>(ranks),
-                                                std::vector<std::uint8_t>(n, 0));
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int q = 0; q < ranks; ++q) {
-      const bool near = column[i] >= first_column_[static_cast<std::size_t>(q)] - reach &&
-                        column[i] < first_column_[static_cast<std::size_t>(q) + 1] + reach;
-      if (owner[i] == q || near) needed[static_cast<std::size_t>(q)][i] = 1;
-    }
-  }
-  const bool listed = ps.nbr_offset.size() == n + 1;
-  if (listed) {
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::int32_t k = ps.nbr_offset[i]; k < ps.nbr_offset[i + 1]; ++k) {
-        needed[static_cast<std::size_t>(owner[i])]
-              [static_cast<std::size_t>(ps.nbr_index[static_cast<std::size_t>(k)])] = 1;
-      }
-    }
-  }
+  const std::vector<int> owner = owners(ps);
+  const std::vector<std::vector<std::uint8_t>> needed = held_by_rank(ps, owner, reach);
   const std::vector<std::uint8_t>& mine = needed[static_cast<std::size_t>(me)];
   std::vector<std::int32_t> keep, new_index(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -147,8 +108,52 @@ void ParcelSlabs::split_replicated(ParcelSystem& ps) {
     new_index[i] = static_cast<std::int32_t>(keep.size());
     keep.push_back(static_cast<std::int32_t>(i));
   }
-  // The exchange lists, in table order on both sides.
+  list_replicated_copies(owner, needed, new_index);
+  const bool listed = ps.nbr_offset.size() == n + 1;
+  if (listed) keep_own_lists(ps, owner, keep, new_index);
+  for (std::size_t i = 0; i < n; ++i) ps.rank_copy[i] = owner[i] != me ? 1 : 0;
+  ps.clear_carried_history();
+  ps.reorder_parcels(keep);
+  if (listed) {
+    // Between rebuilds a copy never asks for one (as after a rebuild).
+    ps.inv_skin2.resize(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      ps.inv_skin2[i] = ps.rank_copy[i] != 0 ? 0.0 : 1.0 / (ps.half_skin[i] * ps.half_skin[i]);
+    }
+  }
+}
+
+std::vector<std::vector<std::uint8_t>> ParcelSlabs::held_by_rank(const ParcelSystem& ps,
+                                                                 const std::vector<int>& owner,
+                                                                 int reach) const {
+  const int ranks = comm_->size();
+  const std::size_t n = ps.size();
+  std::vector<std::vector<std::uint8_t>> needed(static_cast<std::size_t>(ranks),
+                                                std::vector<std::uint8_t>(n, 0));
   for (std::size_t i = 0; i < n; ++i) {
+    const int column = ps.cell_column(ps.x[i]);
+    for (int q = 0; q < ranks; ++q) {
+      if (owner[i] == q || near_rank(column, q, reach)) needed[static_cast<std::size_t>(q)][i] = 1;
+    }
+  }
+  if (ps.nbr_offset.size() == n + 1) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::int32_t k = ps.nbr_offset[i]; k < ps.nbr_offset[i + 1]; ++k) {
+        needed[static_cast<std::size_t>(owner[i])]
+              [static_cast<std::size_t>(ps.nbr_index[static_cast<std::size_t>(k)])] = 1;
+      }
+    }
+  }
+  return needed;
+}
+
+void ParcelSlabs::list_replicated_copies(const std::vector<int>& owner,
+                                         const std::vector<std::vector<std::uint8_t>>& needed,
+                                         const std::vector<std::int32_t>& new_index) {
+  // In table order on both sides.
+  const int ranks = comm_->size(), me = comm_->rank();
+  const std::vector<std::uint8_t>& mine = needed[static_cast<std::size_t>(me)];
+  for (std::size_t i = 0; i < owner.size(); ++i) {
     if (owner[i] == me) {
       for (int q = 0; q < ranks; ++q) {
         if (q != me && needed[static_cast<std::size_t>(q)][i] != 0) {
@@ -159,40 +164,31 @@ void ParcelSlabs::split_replicated(ParcelSystem& ps) {
       recv_copies_[static_cast<std::size_t>(owner[i])].push_back(new_index[i]);
     }
   }
-  // Own parcels keep their lists (partners renumbered); copies have none.
-  if (listed) {
-    std::vector<std::int32_t> offset(keep.size() + 1, 0), index;
-    std::vector<std::int8_t> image;
-    std::vector<double> delta;
-    for (std::size_t k = 0; k < keep.size(); ++k) {
-      const auto i = static_cast<std::size_t>(keep[k]);
-      if (owner[i] == me) {
-        for (std::int32_t s = ps.nbr_offset[i]; s < ps.nbr_offset[i + 1]; ++s) {
-          const auto slot = static_cast<std::size_t>(s);
-          index.push_back(new_index[static_cast<std::size_t>(ps.nbr_index[slot])]);
-          image.push_back(ps.nbr_image[slot]);
-          delta.push_back(ps.nbr_delta[slot]);
-        }
+}
+
+void ParcelSlabs::keep_own_lists(ParcelSystem& ps, const std::vector<int>& owner,
+                                 const std::vector<std::int32_t>& keep,
+                                 const std::vector<std::int32_t>& new_index) const {
+  const int me = comm_->rank();
+  std::vector<std::int32_t> offset(keep.size() + 1, 0), index;
+  std::vector<std::int8_t> image;
+  std::vector<double> delta;
+  for (std::size_t k = 0; k < keep.size(); ++k) {
+    const auto i = static_cast<std::size_t>(keep[k]);
+    if (owner[i] == me) {
+      for (std::int32_t s = ps.nbr_offset[i]; s < ps.nbr_offset[i + 1]; ++s) {
+        const auto slot = static_cast<std::size_t>(s);
+        index.push_back(new_index[static_cast<std::size_t>(ps.nbr_index[slot])]);
+        image.push_back(ps.nbr_image[slot]);
+        delta.push_back(ps.nbr_delta[slot]);
       }
-      offset[k + 1] = static_cast<std::int32_t>(index.size());
     }
-    ps.nbr_offset.swap(offset);
-    ps.nbr_index.swap(index);
-    ps.nbr_image.swap(image);
-    ps.nbr_delta.swap(delta);
+    offset[k + 1] = static_cast<std::int32_t>(index.size());
   }
-  for (std::size_t i = 0; i < n; ++i) ps.rank_copy[i] = owner[i] != me ? 1 : 0;
-  ps.hist_offset_.assign(n + 1, 0);
-  ps.hist_partner_.clear();
-  ps.hist_delta_.clear();
-  ps.reorder_parcels(keep);
-  if (listed) {
-    // Between rebuilds a copy never asks for one (as after a rebuild).
-    ps.inv_skin2.resize(ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      ps.inv_skin2[i] = ps.rank_copy[i] != 0 ? 0.0 : 1.0 / (ps.half_skin[i] * ps.half_skin[i]);
-    }
-  }
+  ps.nbr_offset.swap(offset);
+  ps.nbr_index.swap(index);
+  ps.nbr_image.swap(image);
+  ps.nbr_delta.swap(delta);
 }
 
 void ParcelSlabs::set_cuts(std::vector<double> cuts) {
@@ -204,12 +200,6 @@ void ParcelSlabs::set_cuts(std::vector<double> cuts) {
       throw std::invalid_argument("ParcelSlabs::set_cuts: cuts must ascend");
   }
   cuts_ = std::move(cuts);
-}
-
-int ParcelSlabs::cell_column(const ParcelSystem& ps, double px) const {
-  // The cell sort's own expression (neighbour_list.cpp), so that owner and cell agree.
-  return std::clamp(static_cast<int>(std::floor((px - ps.cfg_.domain.x_min) / ps.cell_dx_)), 0,
-                    ps.cells_x_ - 1);
 }
 
 int ParcelSlabs::owner_of_column(int cx) const {
@@ -229,122 +219,126 @@ void ParcelSlabs::follow_rows(const std::vector<std::int32_t>& old_of_new) {
   }
 }
 
+std::vector<int> ParcelSlabs::owners(const ParcelSystem& ps) const {
+  std::vector<int> owner(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) owner[i] = owner_of_column(ps.cell_column(ps.x[i]));
+  return owner;
+}
+
+bool ParcelSlabs::near_rank(int cx, int q, int reach) const {
+  return cx >= first_column_[static_cast<std::size_t>(q)] - reach &&
+         cx < first_column_[static_cast<std::size_t>(q) + 1] + reach;
+}
+
 bool ParcelSlabs::redistribute(ParcelSystem& ps) {
   const SecondsSince timer(counters_.seconds);
-  const Communicator& comm = *comm_;
-  const int ranks = comm.size(), me = comm.rank();
   update_first_columns(ps);
-
   const std::size_t n0 = ps.size();
-  const bool had_list = comm.any(ps.nbr_offset.size() == n0 + 1);
-  std::vector<int> owner(n0);
-  for (std::size_t i = 0; i < n0; ++i) owner[i] = owner_of_column(cell_column(ps, ps.x[i]));
-
+  const bool had_list = comm_->any(ps.nbr_offset.size() == n0 + 1);
+  const std::vector<int> owner = owners(ps);
   // 1. Owned parcels leaving this rank, packed with their history (the list is still valid).
-  for (auto& b : send_buf_) b.clear();
+  pack_leaving(ps, owner, had_list);
+  // 2. The rows that stay (owned and still ours), with their history as partner ids. The
+  // reach is taken first: the leaving parcels' skins count.
+  const int reach = copy_reach_columns(ps);
+  const int me = comm_->rank();
+  std::vector<std::int32_t> keep;
+  keep.reserve(n0);
   for (std::size_t i = 0; i < n0; ++i) {
+    if (ps.rank_copy[i] == 0 && owner[i] == me) keep.push_back(static_cast<std::int32_t>(i));
+  }
+  if (had_list && ps.nbr_offset.size() == n0 + 1) {
+    ps.carry_listed_history();
+  } else {
+    ps.clear_carried_history();
+  }
+  ps.reorder_parcels(keep);
+  // 3. Take in the parcels that came to this rank.
+  exchange_sized();
+  take_in(ps, false);
+  // 4. Copies: this rank's parcels within reach of another rank's columns.
+  pack_copies(ps, reach);
+  exchange_sized();
+  take_in(ps, true);
+  // 5. The table in the one-rank order; the exchange lists follow their rows.
+  follow_rows(ps.sort_table_by_key());
+  return had_list;
+}
+
+void ParcelSlabs::pack_leaving(const ParcelSystem& ps, const std::vector<int>& owner,
+                               bool had_list) {
+  const int me = comm_->rank();
+  const bool listed = ps.nbr_offset.size() == ps.size() + 1;
+  for (auto& b : send_buf_) b.clear();
+  for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.rank_copy[i] != 0 || owner[i] == me) continue;
     ps.pack_parcel(i, had_list, send_buf_[static_cast<std::size_t>(owner[i])]);
     ++counters_.migrated;
     bool elongated = false;
     for (int w = 0; w < kWallCount; ++w)
       elongated = elongated || ps.wall_delta[i * kWallCount + static_cast<std::size_t>(w)] != 0.0;
-    if (ps.nbr_offset.size() == n0 + 1) {
+    if (listed) {
       for (std::int32_t k = ps.nbr_offset[i]; k < ps.nbr_offset[i + 1]; ++k)
         elongated = elongated || ps.nbr_delta[static_cast<std::size_t>(k)] != 0.0;
     }
     counters_.migrated_with_history += elongated ? 1 : 0;
   }
-  // 2. The rows that stay (owned and still ours), with their history as partner ids.
-  const int reach = copy_reach_columns(ps);
-  auto near_rank = [&](int cx, int q) {
-    return cx >= first_column_[static_cast<std::size_t>(q)] - reach &&
-           cx < first_column_[static_cast<std::size_t>(q) + 1] + reach;
-  };
+}
+
+void ParcelSlabs::pack_copies(const ParcelSystem& ps, int reach) {
+  const int ranks = comm_->size(), me = comm_->rank();
+  // The copy lists start anew (take_in lists the copies that come in).
   for (auto& l : send_copies_) l.clear();
   for (auto& l : recv_copies_) l.clear();
-  std::vector<std::int32_t> keep;
-  keep.reserve(n0);
-  for (std::size_t i = 0; i < n0; ++i) {
-    if (ps.rank_copy[i] == 0 && owner[i] == me) keep.push_back(static_cast<std::int32_t>(i));
-  }
-  ps.hist_offset_.assign(n0 + 1, 0);
-  ps.hist_partner_.clear();
-  ps.hist_delta_.clear();
-  const bool listed_here = had_list && ps.nbr_offset.size() == n0 + 1;
-  for (std::size_t i = 0; i < n0; ++i) {
-    if (listed_here && ps.rank_copy[i] == 0) {
-      for (std::int32_t k = ps.nbr_offset[i]; k < ps.nbr_offset[i + 1]; ++k) {
-        ps.hist_partner_.push_back(
-            ps.id[static_cast<std::size_t>(ps.nbr_index[static_cast<std::size_t>(k)])]);
-        ps.hist_delta_.push_back(ps.nbr_delta[static_cast<std::size_t>(k)]);
-      }
-    }
-    ps.hist_offset_[i + 1] = static_cast<std::int32_t>(ps.hist_partner_.size());
-  }
-  ps.reorder_parcels(keep);
-
-  auto exchange_sized = [&] {
-    // The sizes first (the receiver cannot know them), then the payload.
-    std::vector<std::vector<double>> sizes(static_cast<std::size_t>(ranks)),
-        got(static_cast<std::size_t>(ranks));
-    for (int q = 0; q < ranks; ++q) {
-      if (q == me) continue;
-      sizes[static_cast<std::size_t>(q)] = {
-          static_cast<double>(send_buf_[static_cast<std::size_t>(q)].size())};
-      got[static_cast<std::size_t>(q)].resize(1);
-    }
-    comm.exchange(sizes, got);
-    for (int q = 0; q < ranks; ++q) {
-      recv_buf_[static_cast<std::size_t>(q)].resize(
-          q == me ? 0 : static_cast<std::size_t>(got[static_cast<std::size_t>(q)][0]));
-    }
-    comm.exchange(send_buf_, recv_buf_);
-    for (int q = 0; q < ranks; ++q) {
-      const std::size_t sent = send_buf_[static_cast<std::size_t>(q)].size();
-      counters_.doubles_sent += static_cast<long long>(sent);
-      counters_.messages += sent > 0 ? 1 : 0;
-    }
-  };
-  // Appends the parcels of every rank's message; copies are listed by their sender.
-  const std::size_t head = ps.packed_row_size() + 1;  // the row and its history length
-  auto take_in = [&](bool copies) {
-    for (int q = 0; q < ranks; ++q) {
-      const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
-      const double* row = b.data();
-      const double* end = b.data() + b.size();
-      while (row < end) {
-        if (row + head > end) throw std::runtime_error("ParcelSlabs: a truncated parcel message");
-        if (copies)
-          recv_copies_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(ps.size()));
-        row = ps.append_packed(row, copies);
-      }
-    }
-  };
-
-  // 3. Take in the parcels that came to this rank.
-  exchange_sized();
-  take_in(false);
-  // 4. Copies: this rank's parcels within reach of another rank's columns.
   for (auto& b : send_buf_) b.clear();
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    const int cx = cell_column(ps, ps.x[i]);
+    const int cx = ps.cell_column(ps.x[i]);
     for (int q = 0; q < ranks; ++q) {
-      if (q == me || !near_rank(cx, q)) continue;
+      if (q == me || !near_rank(cx, q, reach)) continue;
       send_copies_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(i));
       ps.pack_parcel(i, false, send_buf_[static_cast<std::size_t>(q)]);
       ++counters_.copies_sent;
     }
   }
-  exchange_sized();
-  take_in(true);
-  // 5. The table in the one-rank order; the exchange lists follow their rows.
-  const std::vector<std::int32_t> by_key = ps.sort_table_by_key();
-  follow_rows(by_key);
-  ps.old_offset_ = ps.hist_offset_;
-  ps.old_partner_id_ = ps.hist_partner_;
-  ps.old_delta_ = ps.hist_delta_;
-  return had_list;
+}
+
+void ParcelSlabs::exchange_sized() {
+  // The sizes first (the receiver cannot know them), then the payload.
+  const int ranks = comm_->size(), me = comm_->rank();
+  std::vector<std::vector<double>> sizes(static_cast<std::size_t>(ranks)),
+      got(static_cast<std::size_t>(ranks));
+  for (int q = 0; q < ranks; ++q) {
+    if (q == me) continue;
+    sizes[static_cast<std::size_t>(q)] = {
+        static_cast<double>(send_buf_[static_cast<std::size_t>(q)].size())};
+    got[static_cast<std::size_t>(q)].resize(1);
+  }
+  comm_->exchange(sizes, got);
+  for (int q = 0; q < ranks; ++q) {
+    recv_buf_[static_cast<std::size_t>(q)].resize(
+        q == me ? 0 : static_cast<std::size_t>(got[static_cast<std::size_t>(q)][0]));
+  }
+  comm_->exchange(send_buf_, recv_buf_);
+  for (int q = 0; q < ranks; ++q) {
+    const std::size_t sent = send_buf_[static_cast<std::size_t>(q)].size();
+    counters_.doubles_sent += static_cast<long long>(sent);
+    counters_.messages += sent > 0 ? 1 : 0;
+  }
+}
+
+void ParcelSlabs::take_in(ParcelSystem& ps, bool copies) {
+  const std::size_t head = ps.packed_row_size() + 1;  // the row and its history length
+  for (int q = 0; q < comm_->size(); ++q) {
+    const std::vector<double>& b = recv_buf_[static_cast<std::size_t>(q)];
+    const double* row = b.data();
+    const double* end = b.data() + b.size();
+    while (row < end) {
+      if (row + head > end) throw std::runtime_error("ParcelSlabs: a truncated parcel message");
+      if (copies)
+        recv_copies_[static_cast<std::size_t>(q)].push_back(static_cast<std::int32_t>(ps.size()));
+      row = ps.append_packed(row, copies);
+    }
+  }
 }
 
 void ParcelSlabs::after_sort(ParcelSystem& ps, const std::vector<std::int32_t>& old_index,

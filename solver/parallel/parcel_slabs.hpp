@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/communicator.hpp"
 #include "solver/dem/parcel_ranks.hpp"
 #include "solver/dem/parcel_system.hpp"
-#include "solver/core/communicator.hpp"
 
 namespace dustlift {
 
@@ -56,6 +56,31 @@ class ParcelSlabs final : public ParcelRanks {
  private:
   /// split's split of a table every rank holds alike.
   void split_replicated(ParcelSystem& ps);
+  /// split_replicated's needs: [q][i] is 1 where rank q holds parcel i (its own, a copy
+  /// within reach of its columns, or a listed partner of its own).
+  std::vector<std::vector<std::uint8_t>> held_by_rank(const ParcelSystem& ps,
+                                                      const std::vector<int>& owner,
+                                                      int reach) const;
+  /// split_replicated's exchange lists (new_index: a parcel's row here, -1 if not held).
+  void list_replicated_copies(const std::vector<int>& owner,
+                              const std::vector<std::vector<std::uint8_t>>& needed,
+                              const std::vector<std::int32_t>& new_index);
+  /// The neighbour lists of the kept rows: own parcels keep theirs (partners renumbered),
+  /// copies have none.
+  void keep_own_lists(ParcelSystem& ps, const std::vector<int>& owner,
+                      const std::vector<std::int32_t>& keep,
+                      const std::vector<std::int32_t>& new_index) const;
+  /// Each row's owner, by its cell column.
+  std::vector<int> owners(const ParcelSystem& ps) const;
+  /// Whether cell column cx lies within `reach` columns of rank q's.
+  bool near_rank(int cx, int q, int reach) const;
+  /// redistribute's steps: the own parcels that leave, packed for their new owners (with the
+  /// history when there was a list); the own parcels within reach of another rank's columns,
+  /// packed as copies; the messages with their sizes; the parcels received, appended.
+  void pack_leaving(const ParcelSystem& ps, const std::vector<int>& owner, bool had_list);
+  void pack_copies(const ParcelSystem& ps, int reach);
+  void exchange_sized();
+  void take_in(ParcelSystem& ps, bool copies);
   /// Each rank's first cell column (first_column_) from the cuts.
   void update_first_columns(const ParcelSystem& ps);
   /// Collective: how many cell columns beyond a rank's own its copies reach.
@@ -63,8 +88,6 @@ class ParcelSlabs final : public ParcelRanks {
   /// The exchange lists after a reorder (old_of_new[k]: the old index of row k).
   void follow_rows(const std::vector<std::int32_t>& old_of_new);
   int owner_of_column(int cx) const;
-  /// The cell sort's column of x (neighbour_list.cpp's own expression, so owner and cell agree).
-  int cell_column(const ParcelSystem& ps, double px) const;
 
   const Communicator* comm_;
   std::vector<double> cuts_;

@@ -245,12 +245,9 @@ void parse_dust_cloud(TableReader& t, OutputConfig& out, const DemConfig& dem,
                        "particles.layer (a fortieth of its length)", Range::positive());
 }
 
-}  // namespace
-
-void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
-                  const GridConfig& grid) {
-  // Replaced keys, in g/m^3 (the only keys not in SI units): refused, naming what replaces
-  // them, since the new keys would read the old values 1000 times too large.
+/// Replaced keys, in g/m^3 (the only keys not in SI units): refused, naming what replaces
+/// them, since the new keys would read the old values 1000 times too large.
+void refuse_replaced_output_keys(const TableReader& t) {
   if (t.has("explosible_concentration"))
     t.fail("explosible_concentration",
            "is replaced by explosible_lower and explosible_upper, the explosible band of the "
@@ -259,6 +256,43 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
     t.fail("cloud_edge_concentration",
            "is replaced by cloud_top_concentration in kg/m^3 (SI): 1 g/m^3 is "
            "cloud_top_concentration = 0.001");
+}
+
+/// The outputs of the dust: the surface, the bands, the parcel fronts, the line of sight and
+/// the dust cloud.
+void parse_dust_outputs(TableReader& t, OutputConfig& out, const RunConfig& run,
+                        const DemConfig& dem, const GridConfig& grid) {
+  const LayerConfig& L = dem.layer;
+  out.surface_threshold =
+      t.number("surface_threshold", out.surface_threshold, Range::open(0.0, 1.0));
+  // Default stations: a quarter, half and three quarters along the layer.
+  const double len = L.x_max - L.x_min;
+  out.surface_stations = t.derived_number_list(
+      "surface_stations", {L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.x_min + 0.75 * len},
+      "particles.layer (a quarter, half and three quarters along it)");
+  out.band_bin_width = t.number("band_bin_width", out.band_bin_width, Range::positive());
+  out.band_duration =
+      t.derived_number("band_duration", run.end_time, "run.end_time", Range::positive());
+  out.contact_window = t.number("contact_window", out.contact_window, Range::positive());
+  parse_bands(t, out, L);
+  out.parcel_fronts = t.boolean("parcel_fronts", out.parcel_fronts);
+  parse_line_of_sight(t, out, grid);
+  out.dust_cloud = t.boolean("dust_cloud", out.dust_cloud);
+  if (!out.dust_cloud) {
+    for (const char* key :
+         {"cloud_lift_height", "cloud_top_concentration", "cloud_filter_width", "explosible_lower",
+          "explosible_upper", "fines_diameter", "entrainment_heights", "entrainment_bin_width"})
+      if (t.has(key)) t.fail(key, "only used with dust_cloud = true");
+  } else {
+    parse_dust_cloud(t, out, dem, grid);
+  }
+}
+
+}  // namespace
+
+void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const DemConfig& dem,
+                  const GridConfig& grid) {
+  refuse_replaced_output_keys(t);
   t.expect_keys({"interval",
                  "vtk",
                  "shock_threshold",
@@ -296,38 +330,15 @@ void parse_output(TableReader t, OutputConfig& out, const RunConfig& run, const 
     if (dem.switched_off) return;
     for (const char* key :
          {"surface_threshold", "surface_stations", "band_bin_width", "band_duration",
-          "contact_window", "bands", "parcel_fronts", "line_of_sight", "dust_cloud", "cloud_lift_height",
-          "cloud_top_concentration", "cloud_filter_width", "explosible_lower", "explosible_upper",
-          "fines_diameter", "entrainment_heights", "entrainment_bin_width"}) {
+          "contact_window", "bands", "parcel_fronts", "line_of_sight", "dust_cloud",
+          "cloud_lift_height", "cloud_top_concentration", "cloud_filter_width", "explosible_lower",
+          "explosible_upper", "fines_diameter", "entrainment_heights", "entrainment_bin_width"}) {
       if (t.has(key)) t.fail(key, "only used with [particles]");
     }
     t.finish();
     return;
   }
-  const LayerConfig& L = dem.layer;
-  out.surface_threshold =
-      t.number("surface_threshold", out.surface_threshold, Range::open(0.0, 1.0));
-  // Default stations: a quarter, half and three quarters along the layer.
-  const double len = L.x_max - L.x_min;
-  out.surface_stations = t.derived_number_list(
-      "surface_stations", {L.x_min + 0.25 * len, L.x_min + 0.5 * len, L.x_min + 0.75 * len},
-      "particles.layer (a quarter, half and three quarters along it)");
-  out.band_bin_width = t.number("band_bin_width", out.band_bin_width, Range::positive());
-  out.band_duration =
-      t.derived_number("band_duration", run.end_time, "run.end_time", Range::positive());
-  out.contact_window = t.number("contact_window", out.contact_window, Range::positive());
-  parse_bands(t, out, L);
-  out.parcel_fronts = t.boolean("parcel_fronts", out.parcel_fronts);
-  parse_line_of_sight(t, out, grid);
-  out.dust_cloud = t.boolean("dust_cloud", out.dust_cloud);
-  if (!out.dust_cloud) {
-    for (const char* key :
-         {"cloud_lift_height", "cloud_top_concentration", "cloud_filter_width", "explosible_lower",
-          "explosible_upper", "fines_diameter", "entrainment_heights", "entrainment_bin_width"})
-      if (t.has(key)) t.fail(key, "only used with dust_cloud = true");
-  } else {
-    parse_dust_cloud(t, out, dem, grid);
-  }
+  parse_dust_outputs(t, out, run, dem, grid);
   t.finish();
 }
 
