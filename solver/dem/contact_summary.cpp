@@ -1,25 +1,26 @@
-// The contact laws in words (contact_summary.hpp).
+// The contact laws and the contact units in words (contact_summary.hpp).
 #include "solver/dem/contact_summary.hpp"
 
 #include <cmath>
 #include <sstream>
 
 #include "solver/dem/coarse_graining.hpp"
-#include "solver/laws/cohesion.hpp"
+#include "solver/dem/contact_effects/contact_list.hpp"
 #include "solver/laws/contact.hpp"
 
 namespace dustlift {
 namespace {
 
-double particle_mass(const DemConfig& cfg, double d) { return cfg.density * sphere_volume(d); }
+double particle_mass(const DemConfig& cfg, double d) {
+  return cfg.density * sphere_volume(d);
+}
 
-/// The gravity a Bond number is taken with: the scene's, else the standard 9.81 m/s^2.
+}  // namespace
+
 double bond_gravity(const DemConfig& cfg) {
   const double g = std::hypot(cfg.gravity_x, cfg.gravity_y);
   return g > 0.0 ? g : 9.81;
 }
-
-}  // namespace
 
 std::string describe_contact_law(const DemConfig& cfg) {
   const ContactParams& c = cfg.contact;
@@ -51,31 +52,18 @@ std::string describe_contact_law(const DemConfig& cfg) {
   return s.str();
 }
 
-std::string describe_cohesion(const DemConfig& cfg) {
-  const CohesionParams& c = cfg.cohesion;
-  const CohesionParams& w = cfg.wall_cohesion;
-  if (!c.enabled() && !w.enabled()) return {};
-  const double d = cfg.particle_diameter;
-  const double m = particle_mass(cfg, d), g = bond_gravity(cfg);
-  const double pair = pull_off_force(c, reduced_radius(0.5 * d, 0.5 * d));
-  const double wall = pull_off_force(w, 0.5 * d);
-  std::ostringstream s;
-  s.precision(4);
-  s << "cohesion: van der Waals per real pair (Hamaker " << c.hamaker << " J, wall "
-    << w.hamaker << " J; contact separation " << c.min_separation * 1e9 << " nm; ";
-  if (c.asperity_radius > 0.0)
-    s << "asperities of " << c.asperity_radius * 1e6 << " um (Rumpf); ";
-  else
-    s << "smooth spheres; ";
-  if (c.cutoff > 0.0)
-    s << "held at contact, Hamaker tail to a gap of " << c.cutoff * 1e6 << " um)";
-  else
-    s << "held while the parcels touch)";
-  s << ": pull-off force " << pair << " N between two particles of " << d * 1e6
-    << " um (Bond number F_c/(m g) " << bond_number(pair, m, g) << " at g = " << g
-    << " m/s^2), " << wall << " N at a wall (Bond number " << bond_number(wall, m, g)
-    << "); a parcel's total is its real count times these (docs/dem.md, \"Coarse graining\")";
-  return s.str();
+std::vector<std::string> contact_descriptions(const DemConfig& cfg) {
+  std::vector<std::string> lines;
+  for_each_contact_unit([&]<class U>(const U*) {
+    if (U::active(cfg)) lines.push_back(U::description(cfg));
+  });
+  return lines;
+}
+
+std::vector<std::string> contact_unit_names() {
+  std::vector<std::string> names;
+  for_each_contact_unit([&]<class U>(const U*) { names.emplace_back(U::kName); });
+  return names;
 }
 
 }  // namespace dustlift

@@ -1,7 +1,9 @@
 // One DEM step: gather contact forces (Table 1), then symplectic Euler (paper Sect. 2.3).
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
+#include "solver/dem/contact_effects/contact_list.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/laws/contact.hpp"
 
@@ -64,20 +66,20 @@ void ParcelSystem::compute_contacts(double dt) {
   }
   // A restitution is the material's: every pair's dashpot follows its own reduced mass.
   const bool pair_damping = restitution;
-  const bool cohesive = cfg_.cohesion.enabled() || cfg_.wall_cohesion.enabled();
-  using Pass = void (ParcelSystem::*)(double);
-  static constexpr Pass kPasses[8] = {
-      &ParcelSystem::contacts_pass<false, false, false>,
-      &ParcelSystem::contacts_pass<false, false, true>,
-      &ParcelSystem::contacts_pass<false, true, false>,
-      &ParcelSystem::contacts_pass<false, true, true>,
-      &ParcelSystem::contacts_pass<true, false, false>,
-      &ParcelSystem::contacts_pass<true, false, true>,
-      &ParcelSystem::contacts_pass<true, true, false>,
-      &ParcelSystem::contacts_pass<true, true, true>,
-  };
-  const int which = (mixed_counts_ ? 4 : 0) + (pair_damping ? 2 : 0) + (cohesive ? 1 : 0);
-  (this->*kPasses[which])(dt);
+  // The pass of this combination of options and active contact units (contact_effects/).
+  with_active_contact_units(cfg_, [&](const auto&... units) {
+    if (mixed_counts_) {
+      if (pair_damping)
+        contacts_pass<true, true>(dt, units...);
+      else
+        contacts_pass<true, false>(dt, units...);
+    } else {
+      if (pair_damping)
+        contacts_pass<false, true>(dt, units...);
+      else
+        contacts_pass<false, false>(dt, units...);
+    }
+  });
 }
 
 namespace {
@@ -97,19 +99,21 @@ struct ContactParcel {
 };
 
 /// The contact pass's laws and columns (ParcelSystem::contacts_pass), and what it does for
-/// one parcel. Its members are inlined into the pass's loop: no call per parcel or pair.
-template <bool Mixed, bool PairDamping, bool Cohesive>
+/// one parcel. Its members, the active contact units' forces included, are inlined into the
+/// pass's loop: no call per parcel or pair.
+template <bool Mixed, bool PairDamping, class... Units>
 struct ContactKernel {
+  explicit ContactKernel(const Units&... u) : units(u...) {}
+
   ContactParams pc, wc;
   double lx, dt;
   bool pair_follows, wall_follows;
   double pair_factor, wall_factor;
-  CohesionParams coh, wcoh;
-  bool pair_cohesion, wall_cohesion;
-  double pair_reach, wall_reach;
+  std::tuple<Units...> units;  ///< the active contact units, in their order (contact_list.hpp)
+  ContactColumns columns;      ///< what they read
   ActiveWall walls[kWallCount];
   int n_walls;
-  const double *px, *py, *pvx, *pvy, *pw, *pr, *pn, *pim, *prd;
+  const double *px, *py, *pvx, *pvy, *pw, *pr, *pn, *pim;
   const std::int32_t *ids, *off, *nj;
   const std::int8_t* nim;
   double *ndelta, *wdelta, *fx_out, *fy_out, *tq_out;
@@ -165,16 +169,8 @@ struct ContactKernel {
       // Not touching: the tangential spring is released (written only when it held
       // something: most slots are idle, and stores to them dominated the profile).
       if (ndelta[k] != 0.0) ndelta[k] = 0.0;
-      if constexpr (Cohesive) {
-        // The van der Waals tail across the gap, up to the cut-off.
-        const double reach = rs + pair_reach;
-        if (pair_cohesion && pair_reach > 0.0 && d2 < reach * reach) {
-          const double dist = std::sqrt(d2);
-          const double f =
-              van_der_waals_force(coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]), dist - rs);
-          add_pair(p, j, f * dx / dist, f * dy / dist, 0.0);
-        }
-      }
+      // The units' attraction across the gap, along (dx, dy) towards j.
+      (pair_gap(std::get<Units>(units), p, j, dx, dy, d2, rs), ...);
       return;
     }
     const double dist = std::sqrt(d2);
@@ -199,15 +195,8 @@ struct ContactKernel {
     }
     ContactResult c = contact_force(law, nx, ny, rs - dist, ux, uy, ndelta[k], p.r, dt);
     ndelta[k] = c.delta_t;
-    if constexpr (Cohesive) {
-      // Attraction along n, towards j; the Coulomb limit above saw the spring-dashpot load,
-      // which holds the adhesion (DMT).
-      if (pair_cohesion) {
-        const double f = pull_off_force(coh, reduced_radius(0.5 * prd[i], 0.5 * prd[j]));
-        c.fx += f * nx;
-        c.fy += f * ny;
-      }
-    }
+    // The units' attraction along n, towards j, added to the spring-dashpot force.
+    (pair_touching(std::get<Units>(units), c, i, j, nx, ny), ...);
     add_pair(p, j, c.fx, c.fy, c.torque);
   }
 
@@ -219,13 +208,7 @@ struct ContactKernel {
     const double gap = w.nx != 0.0 ? w.nx * (w.pos - p.x) : w.ny * (w.pos - p.y);
     if (gap >= p.r) {
       if (delta != 0.0) delta = 0.0;
-      if constexpr (Cohesive) {
-        if (wall_cohesion && gap - p.r < wall_reach) {
-          const double f = van_der_waals_force(wcoh, 0.5 * prd[i], gap - p.r);
-          p.fx += f * w.nx;
-          p.fy += f * w.ny;
-        }
-      }
+      (wall_gap(std::get<Units>(units), p, w, gap - p.r), ...);
       return;
     }
     // The wall is at rest: u = -u_i - r_i w_i z x n.
@@ -240,23 +223,52 @@ struct ContactKernel {
     p.fx += c.fx;
     p.fy += c.fy;
     p.tq += c.torque;
-    if constexpr (Cohesive) {
-      if (wall_cohesion) {
-        // A sphere and a plane: R* = the real particle's radius.
-        const double f = pull_off_force(wcoh, 0.5 * prd[i]);
-        p.fx += f * w.nx;
-        p.fy += f * w.ny;
-      }
+    (wall_touching(std::get<Units>(units), p, w), ...);
+  }
+
+  // One unit's normal force (> 0: attraction), where the pair and wall terms above add it.
+  template <class U>
+  [[gnu::always_inline]] inline void pair_gap(const U& u, ContactParcel& p, std::int32_t j,
+                                              double dx, double dy, double d2, double rs) const {
+    double f, dist;
+    if (u.pair_gap(columns, p.i, j, d2, rs, f, dist))
+      add_pair(p, j, f * dx / dist, f * dy / dist, 0.0);
+  }
+  template <class U>
+  [[gnu::always_inline]] inline void pair_touching(const U& u, ContactResult& c, std::size_t i,
+                                                   std::int32_t j, double nx, double ny) const {
+    double f;
+    if (u.pair_touching(columns, i, j, f)) {
+      c.fx += f * nx;
+      c.fy += f * ny;
+    }
+  }
+  template <class U>
+  [[gnu::always_inline]] inline void wall_gap(const U& u, ContactParcel& p, const ActiveWall& w,
+                                              double gap) const {
+    double f;
+    if (u.wall_gap(columns, p.i, gap, f)) {
+      p.fx += f * w.nx;
+      p.fy += f * w.ny;
+    }
+  }
+  template <class U>
+  [[gnu::always_inline]] inline void wall_touching(const U& u, ContactParcel& p,
+                                                   const ActiveWall& w) const {
+    double f;
+    if (u.wall_touching(columns, p.i, f)) {
+      p.fx += f * w.nx;
+      p.fy += f * w.ny;
     }
   }
 };
 
 }  // namespace
 
-template <bool Mixed, bool PairDamping, bool Cohesive>
-void ParcelSystem::contacts_pass(double dt) {
+template <bool Mixed, bool PairDamping, class... Units>
+void ParcelSystem::contacts_pass(double dt, const Units&... units) {
   const std::size_t n = stepped_count();
-  ContactKernel<Mixed, PairDamping, Cohesive> k;
+  ContactKernel<Mixed, PairDamping, Units...> k(units...);
   k.pc = cfg_.contact;
   k.wc = cfg_.wall_contact;
   k.lx = length_x_;
@@ -267,14 +279,7 @@ void ParcelSystem::contacts_pass(double dt) {
   k.wall_follows = PairDamping && k.wc.restitution > 0.0;
   k.pair_factor = pair_damping_factor_;
   k.wall_factor = wall_damping_factor_;
-  // Van der Waals cohesion per real pair (laws/cohesion.hpp): held at its pull-off force while
-  // the parcels overlap, and down to the cut-off across a gap.
-  k.coh = cfg_.cohesion;
-  k.wcoh = cfg_.wall_cohesion;
-  k.pair_cohesion = Cohesive && k.coh.enabled();
-  k.wall_cohesion = Cohesive && k.wcoh.enabled();
-  k.pair_reach = pair_reach_;
-  k.wall_reach = wall_reach_;
+  k.columns = ContactColumns{real_diameter.data()};
   k.n_walls = 0;
   const DemDomain& d = cfg_.domain;
   if (d.wall_bottom) k.walls[k.n_walls++] = {0, 0.0, -1.0, wall_position(0)};
@@ -289,7 +294,6 @@ void ParcelSystem::contacts_pass(double dt) {
   k.pr = radius.data();
   k.pn = n_real.data();
   k.pim = inv_mass_real.data();
-  k.prd = real_diameter.data();
   k.ids = id.data();
   k.off = nbr_offset.data();
   k.nj = nbr_index.data();

@@ -24,7 +24,8 @@ void ParcelSystem::update_cell_geometry() {
 #pragma omp parallel for schedule(static) reduction(max : d_max) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) d_max = std::max(d_max, dia[i]);
   if (ranks_ != nullptr) d_max = ranks_->max(d_max);  // the same cells on every rank
-  // The cohesion's cut-off (0 without one) widens every reach by as much.
+  // The contact units' reach beyond touching (e.g. the cohesion's cut-off; 0 without one)
+  // widens every reach by as much.
   const double cutoff = d_max + skin_ + pair_reach_;
   radius_max_ = 0.5 * d_max;
   cutoff_ = cutoff;

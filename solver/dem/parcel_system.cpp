@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/dem/contact_effects/contact_list.hpp"
+
 namespace dustlift {
 
 ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
@@ -23,8 +25,12 @@ ParcelSystem::ParcelSystem(const DemConfig& cfg) : cfg_(cfg) {
     pair_damping_factor_ = restitution_damping_factor(cfg_.contact.restitution);
   if (cfg_.wall_contact.restitution > 0.0)
     wall_damping_factor_ = restitution_damping_factor(cfg_.wall_contact.restitution);
-  if (cfg_.cohesion.enabled()) pair_reach_ = cfg_.cohesion.cutoff;
-  if (cfg_.wall_cohesion.enabled()) wall_reach_ = cfg_.wall_cohesion.cutoff;
+  // The farthest any active contact unit acts beyond touching.
+  for_each_contact_unit([&]<class U>(const U*) {
+    if (!U::active(cfg_)) return;
+    pair_reach_ = std::max(pair_reach_, U::pair_reach(cfg_));
+    wall_reach_ = std::max(wall_reach_, U::wall_reach(cfg_));
+  });
 }
 
 EulerArrays ParcelSystem::euler_arrays() {
@@ -191,49 +197,45 @@ double ParcelSystem::mechanical_energy() const {
   double e = kinetic_energy();
   const ContactParams& pc = cfg_.contact;
   const ContactParams& wc = cfg_.wall_contact;
+  const DemDomain& d = cfg_.domain;
   const bool listed = nbr_offset.size() == size() + 1;
-  for (std::size_t i = 0; i < size(); ++i) {
-    if (is_rank_copy(i)) continue;
-    // Gravity potential of the parcel's real particles.
-    e -= mass[i] * (cfg_.gravity_x * x[i] + cfg_.gravity_y * y[i]);
-    if (listed) {
-      for (std::int32_t k = nbr_offset[i]; k < nbr_offset[i + 1]; ++k) {
+  const ContactColumns columns{real_diameter.data()};
+  // The active contact units add their work while touching (contact_effects/).
+  with_active_contact_units(cfg_, [&](const auto&... units) {
+    for (std::size_t i = 0; i < size(); ++i) {
+      if (is_rank_copy(i)) continue;
+      // Gravity potential of the parcel's real particles.
+      e -= mass[i] * (cfg_.gravity_x * x[i] + cfg_.gravity_y * y[i]);
+      for (std::int32_t k = listed ? nbr_offset[i] : 0; listed && k < nbr_offset[i + 1]; ++k) {
         const std::int32_t j = nbr_index[k];
         const double dx = x[j] + nbr_image[k] * length_x_ - x[i], dy = y[j] - y[i];
         const double overlap = radius[i] + radius[j] - std::sqrt(dx * dx + dy * dy);
-        if (overlap > 0.0) {
-          // Half of the pair's spring energy on each side; the pair stands for
-          // min(n_i, n_j) real contacts (compute_contacts).
-          e += 0.5 * std::min(n_real[i], n_real[j]) *
-               (0.5 * pc.k_n * overlap * overlap + 0.5 * pc.k_t * nbr_delta[k] * nbr_delta[k]);
-          // The cohesion's work while touching (its tail across a gap is left out).
-          if (cfg_.cohesion.enabled()) {
-            const double f = pull_off_force(
-                cfg_.cohesion, reduced_radius(0.5 * real_diameter[i], 0.5 * real_diameter[j]));
-            e -= 0.5 * std::min(n_real[i], n_real[j]) * f * overlap;
-          }
-        }
+        if (!(overlap > 0.0)) continue;
+        // Half of the pair's spring energy on each side; the pair stands for
+        // min(n_i, n_j) real contacts (compute_contacts).
+        e += 0.5 * std::min(n_real[i], n_real[j]) *
+             (0.5 * pc.k_n * overlap * overlap + 0.5 * pc.k_t * nbr_delta[k] * nbr_delta[k]);
+        [[maybe_unused]] const double weight = 0.5 * std::min(n_real[i], n_real[j]);
+        (units.pair_energy(columns, i, j, overlap, weight, e), ...);
       }
-    }
-    for (int w = 0; w < kWallCount; ++w) {
-      const bool on = w == 0   ? cfg_.domain.wall_bottom
-                      : w == 1 ? cfg_.domain.wall_top
-                      : w == 2 ? cfg_.domain.wall_left
-                               : cfg_.domain.wall_right;
-      if (!on) continue;
-      const double dist = w == 0   ? y[i] - cfg_.domain.y_min
-                          : w == 1 ? cfg_.domain.y_max - y[i]
-                          : w == 2 ? x[i] - cfg_.domain.x_min
-                                   : cfg_.domain.x_max - x[i];
-      const double overlap = radius[i] - dist;
-      const double dt_w = wall_delta[i * kWallCount + w];
-      if (overlap > 0.0) {
+      for (int w = 0; w < kWallCount; ++w) {
+        const bool on = w == 0   ? d.wall_bottom
+                        : w == 1 ? d.wall_top
+                        : w == 2 ? d.wall_left
+                                 : d.wall_right;
+        if (!on) continue;
+        const double dist = w == 0   ? y[i] - d.y_min
+                            : w == 1 ? d.y_max - y[i]
+                            : w == 2 ? x[i] - d.x_min
+                                     : d.x_max - x[i];
+        const double overlap = radius[i] - dist;
+        const double dt_w = wall_delta[i * kWallCount + w];
+        if (!(overlap > 0.0)) continue;
         e += n_real[i] * (0.5 * wc.k_n * overlap * overlap + 0.5 * wc.k_t * dt_w * dt_w);
-        if (cfg_.wall_cohesion.enabled())
-          e -= n_real[i] * pull_off_force(cfg_.wall_cohesion, 0.5 * real_diameter[i]) * overlap;
+        (units.wall_energy(columns, i, overlap, n_real[i], e), ...);
       }
     }
-  }
+  });
   return e;
 }
 

@@ -244,7 +244,7 @@ class ParcelSystem : public ParcelTable {
   /// in a fixed order (major axis outer, minor inner, parcels in cell order).
   template <class F>
   void for_each_nearby(std::size_t i, int block, F&& f) const;
-  /// Whether pair (i, j at periodic image `image`) lies within the two skins and the cohesion.
+  /// Whether pair (i, j at periodic image `image`) lies within the two skins and the units' reach.
   bool within_listing_reach(std::size_t i, std::int32_t j, int image) const;
   /// Calls f(j, image) for every partner a rebuild lists for parcel i.
   template <class F>
@@ -253,16 +253,16 @@ class ParcelSystem : public ParcelTable {
   void compute_contacts(double dt);
   /// The contact pass. Mixed: parcels of different real counts meet (the pair rule);
   /// PairDamping: a restitution is given, so the dashpot follows each pair's reduced mass;
-  /// Cohesive: van der Waals cohesion is on. A pass
-  /// without an option compiles none of its code.
-  template <bool Mixed, bool PairDamping, bool Cohesive>
-  void contacts_pass(double dt);
+  /// units: the active contact units (contact_effects/, e.g. cohesion), whose forces it adds.
+  /// A pass without an option or a unit compiles none of its code.
+  template <bool Mixed, bool PairDamping, class... Units>
+  void contacts_pass(double dt, const Units&... units);
   bool mixed_counts_ = false;  ///< some parcels' real counts differ (valid when counts_known_)
   bool counts_known_ = false;  ///< cleared when parcels are added, restored or moved
   /// c(e) of the parcel-parcel and parcel-wall restitutions (contact.hpp; used when given).
   double pair_damping_factor_ = 0.0, wall_damping_factor_ = 0.0;
-  /// How far beyond touching the cohesion reaches (its cut-off): the neighbour list, the wall
-  /// mask and the rank copies look that much further.
+  /// How far beyond touching the active contact units reach (e.g. the cohesion's cut-off): the
+  /// neighbour list, the wall mask and the rank copies look that much further.
   double pair_reach_ = 0.0, wall_reach_ = 0.0;
   void integrate(double dt, bool store_parts);
   double wall_position(int w) const;

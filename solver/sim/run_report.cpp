@@ -99,7 +99,7 @@ std::vector<std::string> Simulation::enabled_effects() const {
   const auto& d = scene_.particles;
   const auto& c = scene_.coupling;
   e.push_back(particles_line(d, parcels_ ? parcels_->size() : 0));
-  if (const std::string coh = describe_cohesion(d); !coh.empty()) e.push_back(coh);
+  for (std::string& line : contact_descriptions(d)) e.push_back(std::move(line));
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"
                         : "coupling: one-way (gas does not feel the particles)");
   if (coupling_) {

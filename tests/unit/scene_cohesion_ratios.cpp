@@ -139,7 +139,9 @@ TEST(SceneCohesion, HamakerConstantOrSurfaceEnergy) {
   EXPECT_EQ(d.cohesion.min_separation, 4e-10);
   EXPECT_EQ(d.wall_cohesion.hamaker, 1e-19);  // the wall: the same material by default
   EXPECT_EQ(d.wall_cohesion.asperity_radius, 0.1e-6);
-  const std::string line = describe_cohesion(d);
+  const std::vector<std::string> lines = contact_descriptions(d);
+  ASSERT_EQ(lines.size(), 1u);
+  const std::string& line = lines[0];
   EXPECT_TRUE(has(line, "pull-off force") && has(line, "Bond number")) << line;
   const Scene gamma = parse("[particles.cohesion]\nsurface_energy = 8.289e-3\nwall_hamaker = 0\n");
   EXPECT_NEAR(gamma.particles.cohesion.hamaker, 1e-19, 1e-22);

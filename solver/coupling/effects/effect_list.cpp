@@ -5,44 +5,13 @@
 #include <tuple>
 #include <utility>
 
+#include "solver/core/unit_order.hpp"
 #include "solver/coupling/coupling_config.hpp"
 #include "solver/coupling/effects/effect_units.hpp"
 #include "solver/dem/parcel_system.hpp"
 
 namespace dustlift {
 namespace {
-
-/// The units' indices in EffectUnits, ordered by their kPosition.
-template <class... E>
-constexpr std::array<std::size_t, sizeof...(E)> by_position() {
-  constexpr std::array<int, sizeof...(E)> position{E::kPosition...};
-  std::array<std::size_t, sizeof...(E)> order{};
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return position[a] < position[b]; });
-  return order;
-}
-
-template <class... E>
-constexpr bool distinct_positions() {
-  constexpr std::array<int, sizeof...(E)> position{E::kPosition...};
-  for (std::size_t a = 0; a < position.size(); ++a)
-    for (std::size_t b = a + 1; b < position.size(); ++b)
-      if (position[a] == position[b]) return false;
-  return true;
-}
-
-template <class List, class Indices>
-struct Ordered;
-template <class... E, std::size_t... I>
-struct Ordered<EffectTypeList<E...>, std::index_sequence<I...>> {
-  static_assert(distinct_positions<E...>(), "two effect units share a kPosition");
-  static constexpr auto order = by_position<E...>();
-  using type = EffectTypeList<std::tuple_element_t<order[I], std::tuple<E...>>...>;
-};
-template <class... E>
-auto ordered(EffectTypeList<E...>) ->
-    typename Ordered<EffectTypeList<E...>, std::index_sequence_for<E...>>::type;
 
 /// Every effect unit in the order the sub-step applies them (their kPosition: Table 1's). A new
 /// effect is its unit: the build lists every unit (effect_units.hpp).
