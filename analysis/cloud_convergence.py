@@ -13,6 +13,8 @@ parcel ratio (particles.parcel_ratio, else the parcel diameter) and its cell siz
                     initial layer top, g/m (a height well above every parcel's size)
   explosible        explosible_mass_kg_per_m at the last output, g/m
   explosible area   explosible_area_m2 at the last output, mm^2
+  explosible, 2nd half  the mean of explosible_mass_kg_per_m over the outputs of the second
+                    half of the run, g/m (one output's band varies by some 20 % from the next)
   entrainment       entrainment_rate_kg_per_m_s at the last output, and its mean over the
                     second half of the run (the lifted mass gained over it / its length), kg/(m s)
   per class         classK_lifted_mass_kg_per_m at the last output, g/m
@@ -90,6 +92,7 @@ def cloud(run):
         "entrainment, 2nd half": (lifted[last] - lifted[half]) / (t[last] - t[half]),
         "explosible area": s["explosible_area_m2"][last] * 1e6
         if "explosible_area_m2" in s else float("nan"),
+        "explosible, 2nd half": s["explosible_mass_kg_per_m"][half:].mean() * 1e3,
     }
     k = 0
     while "class%d_lifted_mass_kg_per_m" % k in s:
