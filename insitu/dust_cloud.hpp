@@ -83,8 +83,7 @@ struct LiftedDust {
 };
 
 /// Bins of one width along an axis, edges at origin + k width, clipped to [lo, hi] (the
-/// filter's cells, the entrainment's stretches of channel). A value outside falls in the
-/// nearest end bin.
+/// entrainment's stretches of channel). A value outside falls in the nearest end bin.
 struct AlignedBins {
   double origin, width, lo_edge, hi_edge;
   std::ptrdiff_t first = 0;  ///< index of the first bin counted from origin
