@@ -12,6 +12,9 @@ parcel ratio (particles.parcel_ratio, else the parcel diameter) and its cell siz
   above 1 mm        mass_above_h0p001_kg_per_m: the lifted mass more than 1 mm above the
                     initial layer top, g/m (a height well above every parcel's size)
   explosible        explosible_mass_kg_per_m at the last output, g/m
+  explosible area   explosible_area_m2 at the last output, mm^2
+  explosible, 2nd half  the mean of explosible_mass_kg_per_m over the outputs of the second
+                    half of the run, g/m (one output's band varies by some 20 % from the next)
   entrainment       entrainment_rate_kg_per_m_s at the last output, and its mean over the
                     second half of the run (the lifted mass gained over it / its length), kg/(m s)
   per class         classK_lifted_mass_kg_per_m at the last output, g/m
@@ -21,8 +24,13 @@ alone, the relative difference of each quantity, (b - a) / a, in %. Where the ru
 checkpoint.h5, a third table gives each class's lifted parcels (centre above the lift height at
 the end) over the parcels of its top row (centre within one parcel diameter of the initial
 layer top): near 1 the class lost about its top row, so its lifted mass is set by its parcel
-size, not resolved by it (docs/dust-cloud.md, "A convergence study"). Writes the PNG (lifted mass
-and mass above 1 mm against time, one curve per run) to --out (default
+size, not resolved by it (docs/dust-cloud.md, "A convergence study"). Where the runs have
+series/dust_concentration_histogram.csv, a fourth table gives each run's lifted mass at the last
+output between the histogram edge nearest 0.05 kg/m^3 (the band's default lower edge) and each
+edge from 1 to 4 kg/m^3: the explosible mass the band would hold with that upper edge, to the
+histogram's resolution (10 bins a decade), which shows how much of a difference between runs
+the upper edge's placement makes. Writes the PNG (lifted mass,
+mass above 1 mm and explosible mass against time, one curve per run) to --out (default
 convergence.png beside the first RUNDIR).
 """
 import argparse
@@ -82,12 +90,33 @@ def cloud(run):
         "explosible": s["explosible_mass_kg_per_m"][last] * 1e3,
         "entrainment": s["entrainment_rate_kg_per_m_s"][last],
         "entrainment, 2nd half": (lifted[last] - lifted[half]) / (t[last] - t[half]),
+        "explosible area": s["explosible_area_m2"][last] * 1e6
+        if "explosible_area_m2" in s else float("nan"),
+        "explosible, 2nd half": s["explosible_mass_kg_per_m"][half:].mean() * 1e3,
     }
     k = 0
     while "class%d_lifted_mass_kg_per_m" % k in s:
         q["class %d" % k] = s["class%d_lifted_mass_kg_per_m" % k][last] * 1e3
         k += 1
     return q, s
+
+
+def upper_edge_masses(run):
+    """{upper edge (kg/m^3): lifted mass (g/m) in the bins from the edge nearest 0.05 kg/m^3
+    up to it} at the last output, for the histogram edges from 1 to 4 kg/m^3; None without a
+    histogram series."""
+    path = os.path.join(run, "series", "dust_concentration_histogram.csv")
+    if not os.path.exists(path):
+        return None
+    h = read_series(path)
+    if h is None:
+        return None
+    rows = h["time_s"] == h["time_s"][-1]
+    low, high, mass = (h[k][rows] for k in ("concentration_low_kg_per_m3",
+                                            "concentration_high_kg_per_m3", "mass_kg_per_m"))
+    start = np.argmin(np.abs(np.log(low / 0.05)))
+    return {high[k]: mass[start:k + 1].sum() * 1e3
+            for k in range(start, len(high)) if 1.0 <= high[k] <= 4.0 + 1e-9}
 
 
 def lift_level(run):
@@ -153,7 +182,8 @@ def main(argv):
     data.sort(key=lambda d: (str(d[0]), -d[1]))
     keys = list(data[0][2].keys())
     units = {"lifted": "g/m", "above 1 mm": "g/m", "explosible": "g/m",
-             "entrainment": "kg/(m s)", "entrainment, 2nd half": "kg/(m s)"}
+             "entrainment": "kg/(m s)", "entrainment, 2nd half": "kg/(m s)",
+             "explosible area": "mm^2"}
     lines = ["| run | t [ms] | " + " | ".join(
         "%s [%s]" % (k, units.get(k, "g/m")) for k in keys) + " |",
         "|---|---|" + "---|" * len(keys)]
@@ -179,13 +209,23 @@ def main(argv):
                   "|---|" + "---|" * n]
         for ratio, cell, r in rows:
             lines.append("| %s | " % label(ratio, cell) + " | ".join("%.2f" % v for v in r) + " |")
+    edges = [(ratio, cell, upper_edge_masses(run)) for ratio, cell, run in
+             sorted(((setting(r) + (r,)) for r in runs), key=lambda d: (str(d[0]), -d[1]))]
+    if all(e[2] for e in edges):
+        uppers = sorted(edges[0][2])
+        lines += ["", "| run (mass from 0.05 kg/m^3 up to [g/m]) | " +
+                  " | ".join("%.3g kg/m^3" % u for u in uppers) + " |",
+                  "|---|" + "---|" * len(uppers)]
+        for ratio, cell, e in edges:
+            lines.append("| %s | " % label(ratio, cell) +
+                         " | ".join("%.4g" % e.get(u, float("nan")) for u in uppers) + " |")
     table = "\n".join(lines)
     print(table)
     if args.table:
         with open(args.table, "w") as f:
             f.write(table + "\n")
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharex=True)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2), sharex=True)
     for k, (ratio, cell, q, s) in enumerate(data):
         t = s["time_s"] * 1e3
         style = "-" if cell == min(d[1] for d in data) else "--"
@@ -194,8 +234,11 @@ def main(argv):
         if "mass_above_h0p001_kg_per_m" in s:
             axes[1].plot(t, s["mass_above_h0p001_kg_per_m"] * 1e3, style, marker=".",
                          color="C%d" % k, label=label(ratio, cell))
+        axes[2].plot(t, s["explosible_mass_kg_per_m"] * 1e3, style, marker=".", color="C%d" % k,
+                     label=label(ratio, cell))
     axes[0].set_title("Lifted mass (centre above the lift height)")
     axes[1].set_title("Lifted mass more than 1 mm above the layer top")
+    axes[2].set_title("Lifted mass inside the explosible band")
     for ax in axes:
         ax.set_xlabel("time [ms]")
         ax.set_ylabel("mass [g per m of span]")

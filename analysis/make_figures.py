@@ -211,7 +211,7 @@ def dust_cloud(series, out):
     area.plot(t, series["explosible_area_m2"] * 1e6, color="tab:red", lw=0.8)
     area.set_ylabel("area [mm$^2$]", color="tab:red")
     width, quantum = series["filter_width_m"][-1], series["concentration_quantum_kg_per_m3"][-1]
-    ax.set_title("Inside the explosible band (filtered on %.3g mm cells; one parcel = %.3g kg/m$^3$)"
+    ax.set_title("Inside the explosible band (%.3g mm sliding box; one parcel = %.3g kg/m$^3$)"
                  % (width * 1e3, quantum), fontsize=9)
     ax.legend(fontsize=7)
     ax = axes[3]
@@ -284,7 +284,7 @@ def dust_concentration_histogram(series, out, band):
     ax.set_xscale("log")
     ax.set_xlabel("filtered dust concentration [kg/m$^3$]")
     ax.set_ylabel("lifted mass [g per m of span]")
-    ax.set_title("Lifted mass by the concentration of its filter cell")
+    ax.set_title("Lifted mass by the concentration of the filter boxes holding it")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     return save(fig, out, "dust_concentration_histogram.png")

@@ -6,11 +6,12 @@
 // 2003, Dust Explosions in the Process Industries, ch. 1). VTK-free; the dust-cloud observer
 // (series dust_cloud, dust_concentration_histogram) calls it at outputs.
 //
-// The concentration that decides what is explosible is filtered: the lifted parcels' mass is
-// counted in the square analysis cells of side `filter_width` (docs/dust-cloud.md). One parcel
-// alone in a cell makes the concentration's quantum m_parcel / width^2, the step by which the
-// filtered concentration changes; a width at which it is well below the lower limit lets the
-// band's edges be resolved.
+// The concentration that decides what is explosible is filtered: a moving average of the
+// lifted parcels' mass over a square box of side `filter_width` that slides in steps of
+// width / kFilterSubcells across the channel (docs/dust-cloud.md). One parcel alone in a box
+// makes the concentration's quantum m_parcel / width^2, the step by which the filtered
+// concentration changes; a width at which it is well below the lower limit lets the band's
+// edges be resolved.
 //
 // Units: 2-D, per metre of depth. Masses are kg per metre of span; areas m^2 in the x-y plane.
 #include <array>
@@ -42,21 +43,32 @@ struct CloudField {
   std::span<const double> concentration;  ///< kg/m^3
 };
 
+/// The filter box's side in steps of its analysis lattice. The box slides in steps of
+/// w / kFilterSubcells, so one parcel's share of the band changes in steps of 1/81 as it or
+/// its neighbours move, and the band's edges are placed to w/9 (2.2 mm for 20 mm boxes), a
+/// few per cent of a cloud some filter widths long; odd, so that each box is centred on a
+/// sub-cell (no half-step shift of the field). The lattice holds k^2 sub-cells per w^2, kept
+/// over the lifted dust's extent (plus a box) only, and the box sums cost 2k additions per
+/// sub-cell and summed field: at most about 10^5 per output for the shipped scenes.
+inline constexpr int kFilterSubcells = 9;
+
 struct DustCloudOptions {
   double layer_top = 0.0;            ///< m, the initial layer's top (heights count from it)
   double lift_height = 0.0;          ///< m, a parcel is lifted when y > layer_top + this
   double top_concentration = 0.001;  ///< kg/m^3, the cloud top's level (flow grid)
   int classes = 1;                   ///< size classes of the layer
-  /// The filtered concentration: square cells of this side (m), aligned with `x_origin` and
-  /// the layer top, over the channel x in [x_start, x_end], y in [layer_top, y_end].
+  /// The filtered concentration: square boxes of this side (m) sliding over a lattice of
+  /// sub-cells of side filter_width / filter_subcells, aligned with `x_origin` and the layer
+  /// top, over the channel x in [x_start, x_end], y in [layer_top, y_end].
   double filter_width = 0.0;
-  double x_origin = 0.0;              ///< m, a cell edge (the layer's upstream end)
-  double x_start = 0.0, x_end = 0.0;  ///< m, the channel along x
-  double y_end = 0.0;                 ///< m, the channel's top
-  double explosible_lower = 0.05;     ///< kg/m^3, the band's lower edge (inclusive)
-  double explosible_upper = 2.0;      ///< kg/m^3, the band's upper edge (inclusive)
-  double fines_diameter = 75e-6;      ///< m, particles smaller than this are fines
-  std::vector<double> heights;        ///< m above layer_top: mass above each is reported
+  int filter_subcells = kFilterSubcells;  ///< the box's side in sub-cells (tests use fewer)
+  double x_origin = 0.0;                  ///< m, a sub-cell edge (the layer's upstream end)
+  double x_start = 0.0, x_end = 0.0;      ///< m, the channel along x
+  double y_end = 0.0;                     ///< m, the channel's top
+  double explosible_lower = 0.05;         ///< kg/m^3, the band's lower edge (inclusive)
+  double explosible_upper = 2.0;          ///< kg/m^3, the band's upper edge (inclusive)
+  double fines_diameter = 75e-6;          ///< m, particles smaller than this are fines
+  std::vector<double> heights;            ///< m above layer_top: mass above each is reported
 };
 
 /// The lifted part of one size class (or of all of them).
@@ -71,8 +83,7 @@ struct LiftedDust {
 };
 
 /// Bins of one width along an axis, edges at origin + k width, clipped to [lo, hi] (the
-/// filter's cells, the entrainment's stretches of channel). A value outside falls in the
-/// nearest end bin.
+/// entrainment's stretches of channel). A value outside falls in the nearest end bin.
 struct AlignedBins {
   double origin, width, lo_edge, hi_edge;
   std::ptrdiff_t first = 0;  ///< index of the first bin counted from origin
@@ -94,22 +105,30 @@ inline constexpr int kHistogramBins = 8 * kHistogramPerDecade;
 /// Edge k (0 .. kHistogramBins) of the histogram, kg/m^3.
 double histogram_edge(int k);
 
-/// The filtered concentration's cells and what the band makes of them.
+/// The filtered concentration and what the band makes of it. Each box position inside the
+/// channel reads c = (lifted mass in the box) / (its area, w^2 away from the channel's far
+/// ends). The lifted mass of each sub-cell is shared equally among the n box positions that
+/// hold it (k^2 away from the channel's edges, fewer near them), and a box's share mu counts at
+/// its concentration: its area is mu / c. Away from the edges this is the moving average
+/// sampled at every sub-cell, the share c times the sub-cell's area; everywhere the shares add
+/// up to the lifted mass.
 struct FilteredCloud {
   double quantum = 0.0;  ///< kg/m^3, the largest parcel's mass / filter_width^2
-  /// Cells that hold lifted dust: their area (m^2) and mean concentration (kg/m^3)
+  /// Boxes that hold lifted dust: the area of their shares (m^2) and the lifted mass over it
+  /// (kg/m^3)
   double cloud_area = 0.0, cloud_concentration = 0.0;
-  /// The cells whose filtered concentration lies in [lower, upper]: their lifted mass (kg/m),
-  /// area (m^2), mean concentration (mass / area; NaN when none) and x-extent (NaN when none)
+  /// The boxes whose filtered concentration lies in [lower, upper]: their shares of the
+  /// lifted mass (kg/m) and of the area (m^2), the mean concentration (mass / area; NaN when
+  /// none) and the x-extent of the boxes (NaN when none)
   double explosible_mass = 0.0, explosible_area = 0.0, explosible_concentration = 0.0;
   double explosible_x_min = 0.0, explosible_x_max = 0.0;
-  /// The fines (particle diameter below fines_diameter): their mass in the band's cells and
-  /// their mean concentration there (NaN when no cell is in the band), and in all the lifted
-  /// dust and over the cloud's cells (NaN when nothing is lifted)
+  /// The fines (particle diameter below fines_diameter): their shares in the band's boxes and
+  /// their mean concentration there (NaN when no box is in the band), and in all the lifted
+  /// dust and over the cloud's area (NaN when nothing is lifted)
   double fines_explosible_mass = 0.0, fines_explosible_concentration = 0.0;
   double fines_lifted_mass = 0.0, fines_cloud_concentration = 0.0;
-  /// Per histogram bin: the lifted mass and the fines' mass (kg/m) and the area (m^2) of the
-  /// cells whose concentration falls in it
+  /// Per histogram bin: the shares of the lifted mass, of the fines' mass (kg/m) and of the
+  /// area (m^2) of the boxes whose concentration falls in it
   std::array<double, kHistogramBins> histogram_mass{}, histogram_fines{}, histogram_area{};
 };
 
@@ -128,15 +147,21 @@ struct DustCloud {
 
 /// Scratch the cloud reuses between outputs.
 struct DustCloudScratch {
-  std::vector<double> column_mass, cell_mass, cell_fines;
+  std::vector<double> column_mass;
+  /// The lifted parcels' sub-cells of the filter's lattice (x, y), mass and fines' mass
+  std::vector<std::size_t> lifted_ix, lifted_iy;
+  std::vector<double> lifted_mass, lifted_fines;
+  /// The filter's sub-cells and box positions over the lifted dust's extent
+  std::vector<double> cell_mass, cell_fines, shares, fine_shares, rows, box_mass, box_share,
+      box_fines;
 };
 
 /// The cloud of `parcels` over `field`. Throws std::invalid_argument when the spans' sizes
-/// disagree, a size class is out of range, or the filter has no cells.
+/// disagree, a size class is out of range, or the filter has no box.
 DustCloud dust_cloud(const CloudParcels& parcels, const CloudField& field,
                      const DustCloudOptions& options, DustCloudScratch& scratch);
 
-/// The filtered concentration's quantum: one parcel of `parcel_mass` (kg/m) alone in a cell
+/// The filtered concentration's quantum: one parcel of `parcel_mass` (kg/m) alone in a box
 /// of side `width` (m), kg/m^3.
 inline double concentration_quantum(double parcel_mass, double width) {
   return parcel_mass / (width * width);

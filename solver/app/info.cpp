@@ -35,19 +35,20 @@ double estimated_steps(const Simulation& sim) {
 
 namespace {
 
-/// The dust cloud's filtered concentration: its cells, its quantum against the explosible
-/// band, and the warning the run's log gives when the quantum does not resolve the band.
+/// The dust cloud's filtered concentration: its box and lattice, its quantum against the
+/// explosible band, and the warning the run's log gives when the quantum does not resolve the
+/// band.
 void print_dust_cloud(const Scene& scene, const ParcelSystem& parcels) {
   const DustCloudOptions o = dust_cloud_options(scene);
   double largest = 0.0;
   for (double m : parcels.mass) largest = std::max(largest, m);
   const double quantum = concentration_quantum(largest, o.filter_width);
   fmt::print(
-      "dust cloud: filtered concentration on {:.4g} m cells; quantum (the largest parcel, {:.4g} "
-      "kg/m, alone in a cell) {:.4g} kg/m^3 = {:.3g} % of the explosible band [{:g}, {:g}] "
-      "kg/m^3's lower edge\n",
-      o.filter_width, largest, quantum, 100.0 * quantum / o.explosible_lower, o.explosible_lower,
-      o.explosible_upper);
+      "dust cloud: filtered concentration in {:.4g} m boxes sliding by {:.3g} m; quantum (the "
+      "largest parcel, {:.4g} kg/m, alone in a box) {:.4g} kg/m^3 = {:.3g} % of the explosible "
+      "band [{:g}, {:g}] kg/m^3's lower edge\n",
+      o.filter_width, o.filter_width / static_cast<double>(o.filter_subcells), largest, quantum,
+      100.0 * quantum / o.explosible_lower, o.explosible_lower, o.explosible_upper);
   if (const std::string warning = quantum_warning(quantum, o); !warning.empty())
     fmt::print("{}\n", warning);
 }

@@ -38,8 +38,9 @@ struct Parcels {
   CloudParcels view() const { return {x, y, mass, temperature, size_class, diameter}; }
 };
 
-// The filter's cells are the flow grid's above the layer (1 mm, aligned at x = 0, y = 0) over
-// a channel 4 mm long and 2 mm high above the layer.
+// The filter's boxes are 1 mm square (the flow grid's cells), sliding over a lattice of 1/3 mm
+// sub-cells (k = 3, few enough to count by hand) aligned at x = 0, y = 0, over a channel 4 mm
+// long and 2 mm high above the layer: 12 x 6 sub-cells, 10 x 4 box positions.
 DustCloudOptions options() {
   DustCloudOptions o;
   o.layer_top = 0.0;
@@ -47,6 +48,7 @@ DustCloudOptions options() {
   o.top_concentration = 1e-3;
   o.classes = 2;
   o.filter_width = 1e-3;
+  o.filter_subcells = 3;
   o.x_origin = 0.0;
   o.x_start = 0.0;
   o.x_end = 4e-3;
@@ -96,76 +98,206 @@ TEST(DustCloud, KnownParcelsGiveTheirMassHeightsAndTemperatures) {
   EXPECT_EQ(cloud.mass_above[1], 3e-8);
 }
 
+// a and b equal to round-off (sums of shares divided by their boxes' counts).
+void expect_close(double a, double b) {
+  EXPECT_NEAR(a, b, 1e-12 * std::abs(b)) << a << " vs " << b;
+}
+
 TEST(DustCloud, KnownParcelsGiveTheFilteredConcentrationItsQuantumAndTheBandsMass) {
   const Parcels p;
   const std::vector<double> c = concentration(2e-3);
   DustCloudScratch scratch;
   const FilteredCloud f = dust_cloud(p.view(), {kXFaces, kYFaces, c}, options(), scratch).filtered;
-  // Cells of 1e-6 m^2: the largest parcel (5e-8 kg/m, parcel 1, resting or not) alone in one
+  // Boxes of 1e-6 m^2: the largest parcel (5e-8 kg/m, parcel 1, resting or not) alone in one
   // is 0.05 kg/m^3.
   EXPECT_DOUBLE_EQ(f.quantum, 0.05);
-  // Lifted dust: cell (1, 0) holds parcel 1 (0.05 kg/m^3), cell (2, 1) parcel 2 (0.03), cell
-  // (2, 0) parcel 3 (0.012). The resting parcels 0 and 4 are the bed: not counted.
-  EXPECT_DOUBLE_EQ(f.cloud_area, 3e-6);
-  EXPECT_DOUBLE_EQ(f.cloud_concentration, 9.2e-8 / 3e-6);
+  // Lifted dust in sub-cells (i, j): parcel 1 in (4, 1), parcel 2 in (7, 4), parcel 3 in
+  // (7, 0). No box of 3 x 3 sub-cells holds two of them: every box holding parcel 1 reads
+  // 0.05 kg/m^3, parcel 2's 0.03, parcel 3's 0.012. Parcel 1 lies in the boxes at x positions
+  // 2-4 and y positions 0-1 (6 boxes, each its share 5e-8 / 6 and area share / 0.05 = 1/6 mm^2),
+  // so it adds its mass and one box's area, 1 mm^2; so do the others. The resting parcels 0
+  // and 4 are the bed: not counted.
+  expect_close(f.cloud_area, 3e-6);
+  expect_close(f.cloud_concentration, 9.2e-8 / 3e-6);
   // The band [0.02, 1] kg/m^3 holds the first two: 8e-8 kg/m on 2e-6 m^2, 0.04 kg/m^3, over
-  // x in [1, 3] mm.
-  EXPECT_DOUBLE_EQ(f.explosible_mass, 8e-8);
-  EXPECT_DOUBLE_EQ(f.explosible_area, 2e-6);
-  EXPECT_DOUBLE_EQ(f.explosible_concentration, 0.04);
-  EXPECT_EQ(f.explosible_x_min, 1e-3);
-  EXPECT_EQ(f.explosible_x_max, 3e-3);
+  // the boxes from parcel 1's first (x from 2/3 mm) to parcel 2's last (to 10/3 mm).
+  expect_close(f.explosible_mass, 8e-8);
+  expect_close(f.explosible_area, 2e-6);
+  expect_close(f.explosible_concentration, 0.04);
+  EXPECT_DOUBLE_EQ(f.explosible_x_min, 2e-3 / 3.0);
+  EXPECT_DOUBLE_EQ(f.explosible_x_max, 10e-3 / 3.0);
   // Fines: parcels 1 and 2 (50 um), both lifted, both in the band.
   EXPECT_DOUBLE_EQ(f.fines_lifted_mass, 8e-8);
-  EXPECT_DOUBLE_EQ(f.fines_explosible_mass, 8e-8);
-  EXPECT_DOUBLE_EQ(f.fines_explosible_concentration, 0.04);
-  EXPECT_DOUBLE_EQ(f.fines_cloud_concentration, 8e-8 / 3e-6);
+  expect_close(f.fines_explosible_mass, 8e-8);
+  expect_close(f.fines_explosible_concentration, 0.04);
+  expect_close(f.fines_cloud_concentration, 8e-8 / 3e-6);
   // Histogram, 10 bins per decade from 1e-4 kg/m^3: 0.012 in bin 20 ([0.01, 0.0126)), 0.03
   // in bin 24 ([0.0251, 0.0316)), 0.05 in bin 26 ([0.0398, 0.0501)).
   EXPECT_DOUBLE_EQ(histogram_edge(20), 0.01);
-  EXPECT_DOUBLE_EQ(f.histogram_mass[20], 1.2e-8);
-  EXPECT_DOUBLE_EQ(f.histogram_mass[24], 3e-8);
-  EXPECT_DOUBLE_EQ(f.histogram_mass[26], 5e-8);
-  EXPECT_DOUBLE_EQ(f.histogram_fines[20], 0.0);
-  EXPECT_DOUBLE_EQ(f.histogram_fines[24], 3e-8);
-  EXPECT_DOUBLE_EQ(f.histogram_area[24], 1e-6);
+  expect_close(f.histogram_mass[20], 1.2e-8);
+  expect_close(f.histogram_mass[24], 3e-8);
+  expect_close(f.histogram_mass[26], 5e-8);
+  EXPECT_EQ(f.histogram_fines[20], 0.0);
+  expect_close(f.histogram_fines[24], 3e-8);
+  expect_close(f.histogram_area[24], 1e-6);
   double total = 0.0;
   for (double m : f.histogram_mass) total += m;
-  EXPECT_DOUBLE_EQ(total, 9.2e-8);  // every lifted parcel in one bin
+  expect_close(total, 9.2e-8);  // every lifted parcel's shares in the bins
 
-  // A band whose lower edge lies between the two cells' concentrations parts them.
+  // A band whose lower edge lies between the two parcels' concentrations parts them.
   DustCloudOptions o = options();
   o.explosible_lower = 0.04;
   const FilteredCloud g = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
-  EXPECT_DOUBLE_EQ(g.explosible_mass, 5e-8);
-  EXPECT_DOUBLE_EQ(g.explosible_area, 1e-6);
-  EXPECT_EQ(g.explosible_x_min, 1e-3);
-  EXPECT_EQ(g.explosible_x_max, 2e-3);
+  expect_close(g.explosible_mass, 5e-8);
+  expect_close(g.explosible_area, 1e-6);
+  EXPECT_DOUBLE_EQ(g.explosible_x_min, 2e-3 / 3.0);
+  EXPECT_DOUBLE_EQ(g.explosible_x_max, 7e-3 / 3.0);
 }
 
-TEST(DustCloud, CellsCutByTheChannelCountTheirAreaInsideItAndWiderCellsLowerTheQuantum) {
+// What the sliding box is for: two parcels of 3e-8 kg/m, 0.03 kg/m^3 each alone in a box,
+// part as one drifts downstream, and the band [0.05, 1] (which only the boxes holding both
+// reach) loses their mass in steps of the lattice instead of all at once.
+TEST(DustCloud, TheBandLosesAPairOfParcelsStepByStepAsTheyPart) {
+  Parcels p;
+  p.x = {0.5e-3, 1.5e-3, 1.8e-3};  // 0 rests; 1 and 2 lifted in sub-cells (4, 0) and (5, 0)
+  p.y = {-0.5e-3, 0.2e-3, 0.2e-3};
+  p.mass = {2e-8, 3e-8, 3e-8};
+  p.temperature = {300.0, 300.0, 300.0};
+  p.size_class = {0.0, 0.0, 0.0};
+  p.diameter = {100e-6, 100e-6, 100e-6};
+  DustCloudOptions o = options();
+  o.explosible_lower = 0.05;
+  const std::vector<double> c = concentration(2e-3);
+  DustCloudScratch scratch;
+  // Both hold only the lowest box row (y position 0). Boxes at x positions 2-5: 2 holds
+  // parcel 1 (0.03 kg/m^3), 3 and 4 both (0.06), 5 parcel 2 (0.03). Each parcel is shared by
+  // 3 boxes (1e-8 kg/m each): the band's mass is 4e-8 on 2 x 2e-8 / 0.06 = 2/3 mm^2 at 0.06,
+  // over x from 1 to 7/3 mm; the cloud 6e-8 on 4/3 mm^2.
+  FilteredCloud f = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
+  expect_close(f.explosible_mass, 4e-8);
+  expect_close(f.explosible_area, 2e-6 / 3.0);
+  expect_close(f.explosible_concentration, 0.06);
+  EXPECT_DOUBLE_EQ(f.explosible_x_min, 1e-3);
+  EXPECT_DOUBLE_EQ(f.explosible_x_max, 7e-3 / 3.0);
+  expect_close(f.cloud_area, 4e-6 / 3.0);
+  expect_close(f.cloud_concentration, 0.045);
+  // Parcel 2 one sub-cell on, in (6, 0): only box 4 holds both, 2e-8 on 1/3 mm^2.
+  p.x[2] = 2.1e-3;
+  f = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
+  expect_close(f.explosible_mass, 2e-8);
+  expect_close(f.explosible_area, 1e-6 / 3.0);
+  // In (7, 0): no box holds both, the band is empty.
+  p.x[2] = 2.5e-3;
+  f = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
+  EXPECT_EQ(f.explosible_mass, 0.0);
+  EXPECT_TRUE(std::isnan(f.explosible_concentration));
+  expect_close(f.cloud_area, 2e-6);  // two boxes' worth: each parcel alone
+}
+
+TEST(DustCloud, BoxesCutByTheChannelCountTheirAreaInsideItAndWiderBoxesLowerTheQuantum) {
   const Parcels p;
   const std::vector<double> c = concentration(2e-3);
   DustCloudScratch scratch;
-  // 1.5 mm of channel above the layer: row 1 is 0.5 mm high, so parcel 2 alone makes 0.06.
+  // 1.5 mm of channel above the layer: 5 sub-cell rows, the last 1/6 mm high. Parcel 2 (row 4)
+  // lies in the top box row only (rows 2-4, 5/6 mm high): it alone makes 3e-8 / (5/6 mm^2) =
+  // 0.036 kg/m^3, which a band of [0.033, 0.04] holds alone (parcel 1's boxes read 0.05,
+  // parcel 3's 0.012): its mass on 5/6 mm^2.
   DustCloudOptions o = options();
   o.y_end = 1.5e-3;
-  o.explosible_lower = 0.055;
+  o.explosible_lower = 0.033;
+  o.explosible_upper = 0.04;
   const FilteredCloud f = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
-  EXPECT_DOUBLE_EQ(f.explosible_mass, 3e-8);
-  EXPECT_DOUBLE_EQ(f.explosible_area, 0.5e-6);
-  EXPECT_DOUBLE_EQ(f.explosible_concentration, 0.06);
-  // Cells of 2 mm: the quantum falls fourfold; cell (0, 0) spans x in [0, 2] mm, y in [0, 2]
-  // mm and holds parcel 1 (5e-8 / 4e-6 = 0.0125), cell (1, 0) parcels 2 and 3 (4.2e-8 / 4e-6
-  // = 0.0105).
+  expect_close(f.explosible_mass, 3e-8);
+  expect_close(f.explosible_area, 5e-6 / 6.0);
+  expect_close(f.explosible_concentration, 0.036);
+  // Boxes of 2 mm (sub-cells of 2/3 mm, 6 x 3; one box row, 4 positions along x): the quantum
+  // falls fourfold. Parcel 1 lies in sub-cell column 2, parcels 2 and 3 in column 3: box 0
+  // (columns 0-2) holds parcel 1, 5e-8 / 4e-6 = 0.0125 kg/m^3; boxes 1 and 2 all three,
+  // 0.023; box 3 parcels 2 and 3, 0.0105. Each parcel is shared by three boxes, so box 0's
+  // share is 5e-8 / 3, boxes 1 and 2 9.2e-8 / 3, box 3 4.2e-8 / 3, and each share's area is
+  // a third of its box's, 4/3 mm^2.
   o = options();
   o.filter_width = 2e-3;
   o.explosible_lower = 0.01;
   const FilteredCloud w = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
   EXPECT_DOUBLE_EQ(w.quantum, 0.0125);
-  EXPECT_DOUBLE_EQ(w.explosible_area, 8e-6);
-  EXPECT_DOUBLE_EQ(w.explosible_mass, 9.2e-8);
-  EXPECT_DOUBLE_EQ(w.explosible_concentration, 9.2e-8 / 8e-6);
+  expect_close(w.explosible_area, 16e-6 / 3.0);
+  expect_close(w.explosible_mass, 9.2e-8);
+  expect_close(w.explosible_concentration, 9.2e-8 / (16e-6 / 3.0));
+  // A band from 0.02 kg/m^3 holds boxes 1 and 2: x from 2/3 to 10/3 mm.
+  o.explosible_lower = 0.02;
+  const FilteredCloud b = dust_cloud(p.view(), {kXFaces, kYFaces, c}, o, scratch).filtered;
+  expect_close(b.explosible_mass, 2.0 * 9.2e-8 / 3.0);
+  expect_close(b.explosible_area, 8e-6 / 3.0);
+  expect_close(b.explosible_concentration, 0.023);
+  EXPECT_DOUBLE_EQ(b.explosible_x_min, 2e-3 / 3.0);
+  EXPECT_DOUBLE_EQ(b.explosible_x_max, 10e-3 / 3.0);
+}
+
+// At the shipped lattice (k = 9): one parcel alone reads the quantum over one box's area
+// wherever it lies, in the middle of the channel or against the layer top (where fewer
+// boxes hold it, each a larger share).
+TEST(DustCloud, AParcelAloneReadsTheQuantumOverOneBoxWhereverItLies) {
+  DustCloudOptions o = options();
+  o.filter_subcells = kFilterSubcells;
+  o.classes = 1;
+  const std::vector<double> c = concentration(2e-3);
+  DustCloudScratch scratch;
+  for (const double y : {1.0e-3, 0.15e-3, 1.95e-3}) {
+    for (const double x : {2.0e-3, 0.01e-3, 3.99e-3}) {
+      const std::vector<double> px{x}, py{y}, m{4e-8}, t{300.0};
+      const FilteredCloud f =
+          dust_cloud({px, py, m, t, {}, {}}, {kXFaces, kYFaces, c}, o, scratch).filtered;
+      expect_close(f.explosible_mass, 4e-8);
+      expect_close(f.explosible_area, 1e-6);
+      expect_close(f.explosible_concentration, 0.04);
+      expect_close(f.cloud_area, 1e-6);
+    }
+  }
+}
+
+// The shares add up to the lifted mass, for parcels anywhere in a channel whose ends fall
+// between the lattice's lines (the boxes there are cut by the channel): every histogram
+// adds up (mass, fines, area) and the band holds a part of the cloud.
+TEST(DustCloud, TheSharesAddUpToTheLiftedMass) {
+  DustCloudOptions o = options();
+  o.filter_subcells = kFilterSubcells;
+  o.classes = 1;
+  o.x_start = -0.37e-3;
+  o.x_end = 3.93e-3;
+  o.y_end = 1.71e-3;
+  o.explosible_lower = 0.05;
+  o.explosible_upper = 0.2;
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> ux(-0.37e-3, 3.93e-3), uy(-0.2e-3, 1.71e-3),
+      um(1e-9, 1e-8), ud(20e-6, 120e-6);
+  const std::size_t n = 300;
+  std::vector<double> x(n), y(n), m(n), t(n, 300.0), d(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = ux(random);
+    y[i] = uy(random);
+    m[i] = um(random);
+    d[i] = ud(random);
+  }
+  const std::vector<double> c = concentration(2e-3);
+  DustCloudScratch scratch;
+  const DustCloud cloud = dust_cloud({x, y, m, t, {}, d}, {kXFaces, kYFaces, c}, o, scratch);
+  const FilteredCloud& f = cloud.filtered;
+  double mass = 0.0, fines = 0.0, area = 0.0;
+  for (int k = 0; k < kHistogramBins; ++k) {
+    mass += f.histogram_mass[static_cast<std::size_t>(k)];
+    fines += f.histogram_fines[static_cast<std::size_t>(k)];
+    area += f.histogram_area[static_cast<std::size_t>(k)];
+  }
+  ASSERT_GT(cloud.all.lifted_mass, 0.0);
+  expect_close(mass, cloud.all.lifted_mass);
+  expect_close(fines, f.fines_lifted_mass);
+  expect_close(area, f.cloud_area);
+  expect_close(f.cloud_concentration * f.cloud_area, cloud.all.lifted_mass);
+  EXPECT_GT(f.explosible_mass, 0.0);
+  EXPECT_LT(f.explosible_mass, cloud.all.lifted_mass);
+  EXPECT_GE(f.explosible_concentration, o.explosible_lower);
+  EXPECT_LE(f.explosible_concentration, o.explosible_upper);
 }
 
 TEST(DustCloud, KnownConcentrationGivesTheTop) {
