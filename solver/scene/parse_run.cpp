@@ -219,7 +219,7 @@ void parse_dust_cloud(TableReader& t, OutputConfig& out, const DemConfig& dem,
   const double mass = largest_parcel_mass(dem);
   out.cloud_filter_width = t.derived_number(
       "cloud_filter_width", default_cloud_filter_width(mass, out.explosible_lower, room),
-      "the largest parcel's mass: one parcel alone in a cell is a tenth of explosible_lower, "
+      "the largest parcel's mass: one parcel alone in a box is a tenth of explosible_lower, "
       "at most the channel's height above the layer",
       Range::positive());
   out.fines_diameter = t.number("fines_diameter", out.fines_diameter, Range::positive());

@@ -260,8 +260,8 @@ constexpr SceneKeyDoc kDocs[] = {
      "flow-grid dust concentration that marks the cloud's top (replaces "
      "cloud_edge_concentration in g/m^3, which is refused)"},
     {"output.cloud_filter_width", "m",
-     "side of the square cells of the filtered dust concentration (one parcel alone in a cell: "
-     "the quantum)"},
+     "side of the square box the filtered dust concentration is read in, sliding in steps of a "
+     "ninth of it (one parcel alone in a box: the quantum)"},
     {"output.explosible_lower", "kg/m^3",
      "lower edge of the explosible band: a minimum explosible concentration (0.05: coal, starch "
      "and grain dusts lie at 0.03-0.06; Eckhoff 2003, ch. 1). Replaces explosible_concentration "
