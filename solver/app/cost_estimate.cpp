@@ -84,13 +84,28 @@ bool read_cached(const std::string& key, WorkRates& r, double& age) {
   return found;
 }
 
+/// Adds the rates under `key`, dropping that key's earlier line and every line older than the
+/// cache keeps (the file stays one line per scene and thread count measured within a day).
 void write_cached(const std::string& key, const WorkRates& r) {
   std::error_code ec;
   const fs::path file = cache_file();
   fs::create_directories(file.parent_path(), ec);
-  std::ofstream f(file, std::ios::app);
+  const auto now = std::time(nullptr);
+  std::string kept;
+  {
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream s(line);
+      std::string k;
+      double when = 0.0;
+      if (s >> k >> when && k != key && static_cast<double>(now) - when < kCacheSeconds)
+        kept += line + "\n";
+    }
+  }
+  std::ofstream f(file, std::ios::trunc);
   if (f)
-    f << fmt::format("{} {} {:.6e} {:.6e} {:.6e}\n", key, std::time(nullptr), r.gas_per_cell_stage,
+    f << kept
+      << fmt::format("{} {} {:.6e} {:.6e} {:.6e}\n", key, now, r.gas_per_cell_stage,
                      r.dem_per_parcel_substep, r.coupling_per_parcel_step);
 }
 

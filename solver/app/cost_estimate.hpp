@@ -5,6 +5,7 @@
 // threads, code version and CPU for a day).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "solver/scene/scene.hpp"
 
@@ -30,7 +31,7 @@ struct WorkForecast {
 };
 
 /// The share of the run (averaged over its steps) during which a region behind an active
-/// front that starts at `x0` and moves by `front_step(n)` per step covers the positions `x`
+/// front that starts at `x0` and moves by `advance_per_step` per step covers the positions `x`
 /// (sorted or not; each counts once per step it is behind the front). Pure: tested.
 double mean_share_behind(const std::vector<double>& x, double x0, double steps,
                          double advance_per_step);

@@ -264,10 +264,15 @@ class SweepJobs {
 
   /// The kept runs' results first, so that every summary written holds only complete rows.
   void keep_earlier_runs() {
+    bool any = false;
+    for (std::size_t k = 0; k < n_; ++k) {
+      if (!outcomes_[k]) continue;
+      results_[k] = results_of(k);
+      any = true;
+    }
+    if (any) write_summary();
     for (std::size_t k = 0; k < n_; ++k)
-      if (outcomes_[k]) results_[k] = results_of(k);
-    for (std::size_t k = 0; k < n_; ++k)
-      if (outcomes_[k]) finish(k, *outcomes_[k], " (kept from the earlier sweep)");
+      if (outcomes_[k]) announce(k, " (kept from the earlier sweep)");
   }
 
   RunResults results_of(std::size_t k) const {
@@ -281,10 +286,16 @@ class SweepJobs {
     summary.write(setup_.out_dir);
   }
 
-  void finish(std::size_t k, const RunOutcome& outcome, const char* how_kept) {
+  void finish(std::size_t k, const RunOutcome& outcome) {
     outcomes_[k] = outcome;
     results_[k] = results_of(k);
     write_summary();  // after every run: a killed sweep keeps the rows it finished
+    announce(k, "");
+  }
+
+  /// The run's line: how it ended, how far it got.
+  void announce(std::size_t k, const char* how_kept) const {
+    const RunOutcome& outcome = *outcomes_[k];
     const std::string how = outcome.exit_code == kExitSuccess     ? "done"
                             : outcome.exit_code == kExitNumerical ? "numerical failure (exit 3)"
                             : outcome.exit_code == kExitInterrupted
@@ -351,7 +362,7 @@ class SweepJobs {
       if (code != kExitSuccess || !(outcome.wall_seconds > 0.0))
         outcome.wall_seconds = std::chrono::duration<double>(Clock::now() - c.started).count();
       if (code == kExitSuccess) finished_walls_.push_back(outcome.wall_seconds);
-      finish(c.index, outcome, "");
+      finish(c.index, outcome);
       if (code != kExitSuccess && status_ != kExitInterrupted) status_ = code;
       if (code == kExitInterrupted)
         std::cerr << fmt::format(

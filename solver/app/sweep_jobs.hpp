@@ -30,8 +30,8 @@ struct EarlierRunState {
   RunOutcome outcome;
 };
 
-/// Reads `folder`/run.log (and checkpoint.h5's presence). `exit_code` of the process that
-/// wrote it, when known, decides what a log without a closing line means.
+/// Reads `folder`/run.log (and checkpoint.h5's presence; the exact end time from the
+/// checkpoint written at the end, the log prints it rounded).
 EarlierRunState read_earlier_run(const std::string& folder);
 
 /// The fraction of the run done and the wall seconds since it started, from the last progress
