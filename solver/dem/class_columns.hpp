@@ -24,12 +24,12 @@ struct ClassColumnsError : std::invalid_argument {
 };
 
 struct ClassColumns {
-  std::vector<int> rows;                 ///< per class: parcels in one column
-  std::vector<std::int64_t> columns;     ///< per class: its columns
-  std::vector<double> width;             ///< per class: one column's width, m
-  std::vector<double> real_per_parcel;   ///< per class: real particles per parcel per metre
-  std::vector<int> order;                ///< the class of each column, from x_min on
-  std::int64_t parcels = 0;              ///< in the whole layer
+  std::vector<int> rows;                ///< per class: parcels in one column
+  std::vector<std::int64_t> columns;    ///< per class: its columns
+  std::vector<double> width;            ///< per class: one column's width, m
+  std::vector<double> real_per_parcel;  ///< per class: real particles per parcel per metre
+  std::vector<int> order;               ///< the class of each column, from x_min on
+  std::int64_t parcels = 0;             ///< in the whole layer
   double stretch = 1.0;  ///< the columns' widths over the widths at the exact volume fraction
 };
 
@@ -40,6 +40,9 @@ struct ClassColumns {
 /// stretched by W / sum(columns w) so the columns fill the layer; each parcel of class k holds
 /// n_k = alpha_p w_k depth / (rows_k V_p(d_k)) real particles, so the layer's 3-D solid
 /// fraction is alpha_p and class k's share of the mass is its columns' share of the width.
+/// With LayerConfig::touching_columns, w_k = D_k (columns side by side, every parcel touching
+/// its neighbours; a column dropped from the class most over its share while they would not
+/// fit), and n_k, the same formula, puts alpha_p in the layer's real particles.
 /// Throws ClassColumnsError when a class rounds to no column or its columns would be narrower
 /// than its parcels (a fraction above pi/4 rows_k D_k / depth).
 ClassColumns plan_class_columns(const DemConfig& cfg);

@@ -68,6 +68,11 @@ struct LayerConfig {
   // below stay at volume_fraction, which real_per_parcel is derived from.
   int loose_top_rows = 0;
   double loose_top_fill = 1.0;
+  // Columns of one class each (particles.parcel_ratio with a size distribution) side by side,
+  // every parcel touching its neighbours (the real particles per parcel hold volume_fraction),
+  // or, when false, spread to hold volume_fraction in their discs: gaps of a size set by the
+  // parcels, which made the lifted mass depend on them (docs/dem.md, "Parcels per class").
+  bool touching_columns = true;
 };
 
 /// Whether the layer is settled under gravity before t = 0 (`settle`, or arrangement = settled).

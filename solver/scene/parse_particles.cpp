@@ -258,6 +258,9 @@ void parse_layer_file(TableReader& t, TableReader& lt, DemConfig& dem, const Gri
     if (lt.has(key))
       lt.fail(key, "not used with arrangement = \"file\" (thin the file's rows instead)");
   }
+  if (lt.has("touching_columns"))
+    lt.fail("touching_columns",
+            "not used with arrangement = \"file\" (the file places the parcels)");
   const auto fraction = lt.optional_number("volume_fraction", Range::open(0.0, 0.9));
   note_volume_fraction_default(lt);
   const ParcelFileLimits limits{grid.x.start,
@@ -383,6 +386,13 @@ void parse_generated_layer(TableReader& t, TableReader& lt, TableReader& sd, Dem
   L.seed = static_cast<std::uint64_t>(
       lt.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
   check_parcel_count(t, dem, z, n.area);
+  if (z.class_parcels) {
+    L.touching_columns = lt.boolean("touching_columns", L.touching_columns);
+  } else if (lt.has("touching_columns")) {
+    lt.fail("touching_columns",
+            "only with particles.parcel_ratio and a size distribution (columns of one class "
+            "each)");
+  }
   if (z.class_parcels) {
     n.class_counts = plan_class_parcels(t, lt, dem);
   } else {
@@ -548,7 +558,8 @@ void parse_particles(TableReader t, DemConfig& dem, const GridConfig& grid,
 
   TableReader lt = t.table("layer");
   lt.expect_keys({"x_min", "x_max", "y_min", "y_max", "thickness", "arrangement", "settle", "seed",
-                  "volume_fraction", "file", "loose_top_rows", "loose_top_fill"});
+                  "volume_fraction", "file", "loose_top_rows", "loose_top_fill",
+                  "touching_columns"});
   LayerConfig& L = dem.layer;
   parse_layer_rectangle(lt, L);
   L.arrangement = parse_arrangement(lt);

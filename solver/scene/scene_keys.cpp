@@ -128,6 +128,9 @@ constexpr SceneKeyDoc kDocs[] = {
      "particle_diameter"},
     {"particles.layer.loose_top_rows", "1", "the top rows that keep only a share of their sites"},
     {"particles.layer.loose_top_fill", "1", "the share of sites the loose top rows keep"},
+    {"particles.layer.touching_columns", "",
+     "columns of one class each side by side, every parcel touching its neighbours; the real "
+     "particles per parcel hold volume_fraction"},
     {"particles.size_distribution", "",
      "a polydisperse layer: discrete classes, or a log-normal mass distribution cut into classes"},
     {"particles.size_distribution.diameters", "m",

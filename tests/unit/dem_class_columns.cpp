@@ -4,6 +4,7 @@
 // its momentum and mass to round-off through contacts, restitution and cohesion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -25,6 +26,7 @@ namespace {
 DemConfig two_classes() {
   DemConfig c;
   c.enabled = true;
+  c.layer.touching_columns = false;  // the spread columns; touching ones in their own tests
   c.density = 1500.0;
   c.size_classes = {{20e-6, 0.4, 80e-6}, {60e-6, 0.6, 120e-6}};
   c.particle_diameter = 60e-6;
@@ -70,8 +72,7 @@ TEST(ClassColumns, EachClassHoldsItsMassShareInColumnsOfItsOwnParcels) {
   // Each class's share of the mass within one column's share of the width.
   for (std::size_t k = 0; k < 2; ++k) {
     const double share = mass[k] / layer_mass(cfg);
-    EXPECT_NEAR(share, cfg.size_classes[k].mass_fraction, plan.width[k] / (L.x_max - L.x_min))
-        << k;
+    EXPECT_NEAR(share, cfg.size_classes[k].mass_fraction, plan.width[k] / (L.x_max - L.x_min)) << k;
     std::printf("class %zu: %d rows x %lld columns of %.2f um, %lld parcels, mass share %.4f\n", k,
                 plan.rows[k], static_cast<long long>(plan.columns[k]), plan.width[k] * 1e6,
                 static_cast<long long>(plan.rows[k] * plan.columns[k]), share);
@@ -98,6 +99,7 @@ TEST(ClassColumns, TheLayerStartsAtRestWithoutOverlaps) {
 
 TEST(ClassColumns, TooDenseOrTooFewColumnsAreRefused) {
   DemConfig dense = two_classes();
+  dense.layer.touching_columns = false;  // spread columns hold the fraction in their discs
   dense.layer.volume_fraction = 0.8;
   try {
     plan_class_columns(dense);
@@ -164,12 +166,79 @@ TEST(ClassColumns, BoxOfTwoParcelRatiosConservesMomentumAndMass) {
   }
   double px, py, scale1, m;
   totals(px, py, scale1, m);
-  std::printf("%zu parcels, %zu contacts sampled (%zu between classes): momentum change "
-              "(%.3g, %.3g) of %.3g, mass %.17g -> %.17g\n",
-              s.size(), contacts, mixed / 2, px - px0, py - py0, scale, m0, m);
+  std::printf(
+      "%zu parcels, %zu contacts sampled (%zu between classes): momentum change "
+      "(%.3g, %.3g) of %.3g, mass %.17g -> %.17g\n",
+      s.size(), contacts, mixed / 2, px - px0, py - py0, scale, m0, m);
   EXPECT_GT(mixed, 10u);
   EXPECT_NEAR((px - px0) / scale, 0.0, 1e-13);
   EXPECT_NEAR((py - py0) / scale, 0.0, 1e-13);
   EXPECT_EQ(m, m0);
   EXPECT_NEAR(m / layer_mass(cfg), 1.0, 0.02);
+}
+
+TEST(ClassColumns, TouchingColumnsStandSideBySideAndHoldTheFractionInTheirRealParticles) {
+  // Columns one parcel wide, side by side: the discs cover pi/4 rows D / depth of the layer
+  // (0.74 for 80 um parcels in 6 rows of 0.5 mm) while the real particles hold volume_fraction.
+  DemConfig cfg = two_classes();
+  cfg.layer.touching_columns = true;
+  const ClassColumns plan = plan_class_columns(cfg);
+  const LayerConfig& L = cfg.layer;
+  const double width = L.x_max - L.x_min, depth = L.y_max - L.y_min;
+  EXPECT_GE(plan.stretch, 1.0);
+  EXPECT_LT(plan.stretch, 1.0 + 2 * 120e-6 / width);  // within one column's share
+  double filled = 0.0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_DOUBLE_EQ(plan.width[k], cfg.size_classes[k].parcel_diameter * plan.stretch) << k;
+    filled += static_cast<double>(plan.columns[k]) * plan.width[k];
+  }
+  EXPECT_NEAR(filled, width, 1e-15);
+  ParcelSystem s = make_layer_system(cfg);
+  ASSERT_EQ(static_cast<std::int64_t>(s.size()), plan.parcels);
+  double solid = 0.0, discs = 0.0, mass[2] = {0.0, 0.0};
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    solid += s.n_real[i] * sphere_volume(s.real_diameter[i]);
+    discs += disc_area(s.diameter[i]);
+    mass[static_cast<std::size_t>(s.size_class[i])] += s.mass[i];
+  }
+  EXPECT_NEAR(solid / (width * depth) / L.volume_fraction, 1.0, 1e-12);
+  const double covered = discs / (width * depth);
+  std::printf("touching: %lld + %lld columns, stretch %.6f, discs cover %.4f of the layer\n",
+              static_cast<long long>(plan.columns[0]), static_cast<long long>(plan.columns[1]),
+              plan.stretch, covered);
+  EXPECT_GT(covered, 0.7);  // spread columns at 0.5 would cover 0.5
+  for (std::size_t k = 0; k < 2; ++k)
+    EXPECT_NEAR(mass[k] / layer_mass(cfg), cfg.size_classes[k].mass_fraction, plan.width[k] / width)
+        << k;
+  // Touching, not overlapping: at rest, no contact counted, neighbours within round-off.
+  s.step(s.stable_time_step());
+  EXPECT_EQ(s.contact_pair_count(), 0u);
+  EXPECT_EQ(s.kinetic_energy(), 0.0);
+  double widest_gap = 0.0;
+  std::vector<std::size_t> tops;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (std::abs(s.y[i] + s.radius[i] - L.y_max) < 1e-12) tops.push_back(i);
+  std::sort(tops.begin(), tops.end(),
+            [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
+  for (std::size_t q = 1; q < tops.size(); ++q) {
+    const std::size_t a = tops[q - 1], b = tops[q];
+    widest_gap = std::max(widest_gap, s.x[b] - s.x[a] - s.radius[a] - s.radius[b]);
+  }
+  EXPECT_LT(widest_gap, (plan.stretch - 1.0) * 120e-6 + 1e-12);
+}
+
+TEST(ClassColumns, TouchingColumnsThatWouldNotFitLoseAColumnOfTheClassMostOverItsShare) {
+  // 1.000 mm of 80 um and 120 um columns at 40/60 %: round(5.0) + round(5.0) columns are
+  // 0.4 + 0.6 mm; widening the layer by less than a column keeps them, narrowing it by a hair
+  // drops one column of one class, never squeezes the columns.
+  DemConfig cfg = two_classes();
+  cfg.layer.touching_columns = true;
+  cfg.layer.x_max = 0.001 - 1e-9;
+  const ClassColumns plan = plan_class_columns(cfg);
+  double filled = 0.0;
+  for (std::size_t k = 0; k < 2; ++k)
+    filled += static_cast<double>(plan.columns[k]) * cfg.size_classes[k].parcel_diameter;
+  EXPECT_LE(filled, cfg.layer.x_max);
+  EXPECT_EQ(plan.columns[0] + plan.columns[1], 9);
+  EXPECT_GE(plan.stretch, 1.0);
 }

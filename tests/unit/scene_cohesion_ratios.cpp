@@ -82,9 +82,10 @@ TEST(SceneParcelRatio, OneRatioGivesEachClassParcelsOfItsOwnSize) {
 }
 
 TEST(SceneParcelRatio, AListGivesOneRatioPerClass) {
-  const Scene s = parse("[particles.size_distribution]\ndiameters = [20e-6, 60e-6]\n"
-                        "mass_fractions = [0.4, 0.6]\n",
-                        {"particles.parcel_ratio=[4, 2]", kColumnar[0]});
+  const Scene s = parse(
+      "[particles.size_distribution]\ndiameters = [20e-6, 60e-6]\n"
+      "mass_fractions = [0.4, 0.6]\n",
+      {"particles.parcel_ratio=[4, 2]", kColumnar[0]});
   EXPECT_DOUBLE_EQ(s.particles.size_classes[0].parcel_diameter, 80e-6);
   EXPECT_DOUBLE_EQ(s.particles.size_classes[1].parcel_diameter, 120e-6);
 }
@@ -100,18 +101,25 @@ TEST(SceneParcelRatio, BadRatiosAreNamed) {
   EXPECT_TRUE(has(below, "particles.parcel_ratio") && has(below, ">= 1")) << below;
   const std::string length = error_of(kClasses, {"particles.parcel_ratio=[2, 3, 4]", kColumnar[0]});
   EXPECT_TRUE(has(length, "particles.parcel_ratio") && has(length, "2 size classes")) << length;
-  const std::string one_size = error_of("", {"particles.diameter=40e-6", "particles.parcel_ratio=[2, 3]"});
+  const std::string one_size =
+      error_of("", {"particles.diameter=40e-6", "particles.parcel_ratio=[2, 3]"});
   EXPECT_TRUE(has(one_size, "particles.parcel_ratio") && has(one_size, "size_distribution"))
       << one_size;
-  const std::string both = error_of(kClasses, {"particles.parcel_ratio=2", kColumnar[0],
-                                               "particles.parcel_diameter=100e-6"});
+  const std::string both = error_of(
+      kClasses, {"particles.parcel_ratio=2", kColumnar[0], "particles.parcel_diameter=100e-6"});
   EXPECT_TRUE(has(both, "particles.parcel_ratio") && has(both, "not both")) << both;
   const std::string lattice = error_of(kClasses, {"particles.parcel_ratio=2"});
   EXPECT_TRUE(has(lattice, "particles.parcel_ratio") && has(lattice, "columnar")) << lattice;
-  const std::string dense =
-      error_of(kClasses, {"particles.parcel_ratio=2", kColumnar[0],
-                          "particles.layer.volume_fraction=0.85"});
+  // Spread columns hold the fraction in their discs; touching ones in their real particles.
+  const std::string dense = error_of(
+      kClasses, {"particles.parcel_ratio=2", kColumnar[0], "particles.layer.touching_columns=false",
+                 "particles.layer.volume_fraction=0.85"});
   EXPECT_TRUE(has(dense, "particles.layer.volume_fraction")) << dense;
+  const std::string touching_one_size = error_of(
+      "", {"particles.diameter=40e-6", kColumnar[0], "particles.layer.touching_columns=true"});
+  EXPECT_TRUE(has(touching_one_size, "particles.layer.touching_columns") &&
+              has(touching_one_size, "size distribution"))
+      << touching_one_size;
   // A cell smaller than the largest class's parcels.
   const std::string cell = error_of(kClasses, {"particles.parcel_ratio=30", kColumnar[0]});
   EXPECT_TRUE(has(cell, "particles.parcel_ratio")) << cell;
@@ -155,9 +163,11 @@ TEST(SceneCohesion, BadCohesionIsNamed) {
   EXPECT_TRUE(has(negative, "particles.cohesion.hamaker") && has(negative, ">= 0")) << negative;
   const std::string gamma = error_of("[particles.cohesion]\nsurface_energy = -0.01\n");
   EXPECT_TRUE(has(gamma, "particles.cohesion.surface_energy") && has(gamma, ">= 0")) << gamma;
-  const std::string both = error_of("[particles.cohesion]\nhamaker = 1e-19\nsurface_energy = 0.01\n");
+  const std::string both =
+      error_of("[particles.cohesion]\nhamaker = 1e-19\nsurface_energy = 0.01\n");
   EXPECT_TRUE(has(both, "particles.cohesion.surface_energy") && has(both, "not both")) << both;
-  const std::string separation = error_of("[particles.cohesion]\nhamaker = 1e-19\nmin_separation = 0\n");
+  const std::string separation =
+      error_of("[particles.cohesion]\nhamaker = 1e-19\nmin_separation = 0\n");
   EXPECT_TRUE(has(separation, "particles.cohesion.min_separation")) << separation;
   const std::string cutoff = error_of("[particles.cohesion]\nhamaker = 1e-19\ncutoff = 1e-3\n");
   EXPECT_TRUE(has(cutoff, "particles.cohesion.cutoff") && has(cutoff, "parcel_diameter")) << cutoff;
