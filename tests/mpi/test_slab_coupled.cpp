@@ -244,7 +244,7 @@ TEST(SlabCoupled, SkippingWithinAToleranceOnTwoRanksMatchesOneRank) {
   ASSERT_EQ(world().size(), 2) << "run under mpirun -np 2";
   // run.rest_tolerance skips gas and parcels that rest within 1e-10 of the reference, which
   // changes bits (below: against exact skipping); each slab must skip what one grid skips.
-  const Scene scene = reduced_quickstart({"run.rest_tolerance=1e-10"});
+  const Scene scene = reduced_quickstart();  // within the default 1e-10
   constexpr int kSteps = 150, kCheckpoint = 75;
   omp_set_num_threads(1);
   Simulation two(scene, &world());
@@ -274,7 +274,7 @@ TEST(SlabCoupled, SkippingWithinAToleranceOnTwoRanksMatchesOneRank) {
   EXPECT_EQ(differing_datasets(resumed.snapshot(), uninterrupted), "")
       << "one rank from the two ranks' checkpoint";
   // The tolerance mattered: exact skipping gives other bits and updates more gas cells.
-  Simulation exact(reduced_quickstart({"run.rest_tolerance=0"}));
+  Simulation exact(reduced_quickstart({"run.exact=true"}));
   advance_steps(exact, kSteps);
   EXPECT_NE(differing_datasets(exact.snapshot(), uninterrupted), "");
   EXPECT_LT(one.gas().cell_updates(), exact.gas().cell_updates());
