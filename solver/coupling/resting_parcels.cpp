@@ -14,22 +14,11 @@ void RestingParcels::agree_over_slabs(const GasSolver& gas, const Grid2D& grid,
   // over the ranks gives the last rank's values).
   constexpr double kNone = -std::numeric_limits<double>::infinity();
   const bool last = slab.halo->owns_right_boundary();
-  const RestReference own = last ? gas.rest_reference() : RestReference{};
-  double reference[6] = {last ? (own.valid ? 1.0 : 0.0) : kNone,
-                         last ? own.p : kNone,
-                         last ? own.T : kNone,
-                         last ? own.du : kNone,
-                         last ? own.dp : kNone,
-                         last ? own.dT : kNone};
+  double reference[kRestReferenceValues];
+  pack_rest_reference(gas.rest_reference(), reference);
+  if (!last) std::fill(reference, reference + kRestReferenceValues, kNone);
   slab.max_each(reference);
-  RestReference whole;
-  whole.valid = reference[0] > 0.5;
-  whole.p = reference[1];
-  whole.T = reference[2];
-  whole.du = reference[3];
-  whole.dp = reference[4];
-  whole.dT = reference[5];
-  gas.resting_gas(resting_, whole);
+  gas.resting_gas(resting_, unpack_rest_reference(reference));
   // Per row, the first whole-grid column from which the row rests to the domain's end: the
   // largest of the ranks' own (a slab's scan runs to its ghost columns, the neighbour's first
   // cells; one whose interior rests from its first column on defers to the ranks before it,

@@ -48,6 +48,9 @@ GasSolver::Impl::Impl(const Grid2D& g, const GasConfig& c)
   x_face_owner.assign(static_cast<std::size_t>(ny), -1);
   row_lo.assign(static_cast<std::size_t>(ny), 0);
   row_hi.assign(static_cast<std::size_t>(ny), nx);
+  rest_agreement.whole_columns = nx;
+  whole_lo.assign(static_cast<std::size_t>(ny), 0);
+  whole_hi.assign(static_cast<std::size_t>(ny), nx);
   rest_to.assign(static_cast<std::size_t>(ny + 2 * ng), -ng - 1);
   rest_from.assign(static_cast<std::size_t>(ny + 2 * ng), nx + ng);
   source_rows.assign(static_cast<std::size_t>(ny), SourceExtent{});

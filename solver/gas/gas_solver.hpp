@@ -11,6 +11,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,20 @@ struct FaultReporting {
   std::function<std::string(const std::string&)> agree;
 };
 
+/// Where the grid is one x-slab of a larger grid (a decomposed run): what makes its skipping
+/// within run.rest_tolerance decide, in every stage, to update the cells a solver on the whole
+/// grid would (the whole grid's resting references, per row its resting ends and sources):
+/// skipping within a tolerance changes the bits of what it skips, so the slabs must skip what
+/// one grid skips. Exact skipping ignores it (any resting stencil changes no bit). The
+/// default: the grid is the whole, no collective.
+struct RestAgreement {
+  int first_column = 0;   ///< of this grid in the whole one
+  int whole_columns = 0;  ///< of the whole grid
+  /// Collective over the slabs: each slab's `values` become the element-by-element minimum
+  /// (every slab passes as many, in the same order).
+  std::function<void(std::span<double>)> min_each;
+};
+
 /// Integrals over the interior: mass (kg/m), x/y momentum, total energy (J/m).
 struct GasTotals {
   double mass = 0, momentum_x = 0, momentum_y = 0, energy = 0;
@@ -62,6 +77,9 @@ class GasSolver {
   void set_ghost_filler(GridSide side, GhostFiller* filler);
   /// How failed checks are reported (FaultReporting); set it before initialize().
   void set_fault_reporting(FaultReporting reporting);
+  /// How the skipping of resting cells agrees with the other slabs (RestAgreement); set it
+  /// before initialize().
+  void set_rest_agreement(RestAgreement agreement);
 
   void initialize(const InitialCondition& ic);
   double stable_dt() const;

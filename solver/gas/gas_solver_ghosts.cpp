@@ -44,9 +44,9 @@ void GasSolver::Impl::resolve_fillers() {
 }
 
 PrimitiveGhosts GasSolver::Impl::primitive_ghosts() {
-  return {{&rho, &u, &v, &p, &T},
-          skip_resting ? row_lo.data() : nullptr,
-          skip_resting ? row_hi.data() : nullptr};
+  // The slabs that agree on their ranges need not send them (widen_active_ranges).
+  const bool send = skip_resting && !agrees_over_slabs();
+  return {{&rho, &u, &v, &p, &T}, send ? row_lo.data() : nullptr, send ? row_hi.data() : nullptr};
 }
 
 /// The ghosts of the sides filled from this grid's own cells, by every thread of a

@@ -60,11 +60,17 @@ struct GasSolver::Impl {
   /// (skip_resting; docs/gas-solver.md). Without skipping every row is [0, nx).
   bool skip_resting;
   std::vector<int> row_lo, row_hi;
-  /// Per grid row including ghost rows (index j + ng): cells [-ng, rest_to] rest at the left
-  /// reference state, cells [rest_from, nx + ng) at the right one.
+  /// The ranges below are in the whole grid's columns (rest_agreement: on a slab they are
+  /// agreed over the slabs; row_lo, row_hi are this grid's part of whole_lo, whole_hi).
+  RestAgreement rest_agreement;
+  /// Per interior row, the whole grid's cells [whole_lo, whole_hi) a stage updates.
+  std::vector<int> whole_lo, whole_hi;
+  /// Per grid row including ghost rows (index j + ng): the whole grid's cells [-ng, rest_to]
+  /// rest at the left reference state, cells [rest_from, columns + ng) at the right one.
   std::vector<int> rest_to, rest_from;
   RestReference left_reference, right_reference;
-  std::vector<SourceExtent> source_rows;  ///< per interior row, found once per step
+  std::vector<SourceExtent> source_rows;  ///< per interior row (whole columns), once per step
+  std::vector<double> agreed_;            ///< scratch of agree_rest_rows
   /// Per interior row, the cells whose step-start state is saved in U0 this step (a hull of
   /// the ranges updated so far; a cell enters it before its first update of the step).
   std::vector<int> saved_lo, saved_hi;
@@ -204,10 +210,14 @@ struct GasSolver::Impl {
   template <class Th>
   void rk3_step(const Th& th, double dt);
 
-  // Resting cells (gas_solver_resting.cpp).
+  // Resting cells (gas_solver_resting.cpp; on a slab gas_solver_rest_agreement.cpp).
+  bool agrees_over_slabs() const { return static_cast<bool>(rest_agreement.min_each); }
+  void scan_rest_rows();
+  void agree_rest_rows();
   void compute_active_ranges();
   void find_source_rows();
   void widen_active_ranges();
+  void set_row_range(std::size_t k, int lo, int hi);
   RestReference rest_reference_of(std::size_t c) const;
 
   // Checks (gas_solver_faults.cpp).

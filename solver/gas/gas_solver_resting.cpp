@@ -5,86 +5,110 @@
 namespace dustlift {
 
 /// Per row (ghost rows included) the cells at each end that rest at that end's reference
-/// state; then per interior row the cells a stage must update (rest_ranges.hpp). Runs inside
-/// the stage's parallel region after the ghosts were filled.
-void GasSolver::Impl::compute_active_ranges() {
-  if (!skip_resting) return;
-#pragma omp single
-  {
-    left_reference = rest_reference_of(at(0, ny - 1));
-    right_reference = rest_reference_of(at(nx - 1, ny - 1));
-  }
-  const int cells = nx + 2 * ng;
+/// state, in the whole grid's columns. Every thread of a parallel region calls it.
+void GasSolver::Impl::scan_rest_rows() {
+  const int cells = nx + 2 * ng, first = rest_agreement.first_column;
 #pragma omp for schedule(static)
   for (int jr = -ng; jr < ny + ng; ++jr) {
     const std::size_t c = at(-ng, jr);
     const RowView row{u.data() + c, v.data() + c, p.data() + c, T.data() + c, cells};
     const auto k = static_cast<std::size_t>(jr + ng);
-    rest_to[k] = resting_prefix(row, left_reference) - 1 - ng;
-    rest_from[k] = cells - resting_suffix(row, right_reference) - ng;
+    rest_to[k] = first + resting_prefix(row, left_reference) - 1 - ng;
+    rest_from[k] = first + cells - resting_suffix(row, right_reference) - ng;
+  }
+}
+
+/// The whole grid's cells [lo, hi) of interior row k to update, and this grid's part of them.
+void GasSolver::Impl::set_row_range(std::size_t k, int lo, int hi) {
+  whole_lo[k] = lo;
+  whole_hi[k] = hi;
+  const int first = rest_agreement.first_column;
+  int own_lo = std::clamp(lo - first, 0, nx), own_hi = std::clamp(hi - first, 0, nx);
+  if (own_lo > own_hi) own_lo = own_hi;
+  row_lo[k] = own_lo;
+  row_hi[k] = own_hi;
+}
+
+/// Per interior row the cells a stage must update (rest_ranges.hpp), from the resting ends
+/// (on a slab agreed before the stage's parallel region: agree_rest_rows). Runs inside the
+/// stage's parallel region after the ghosts were filled.
+void GasSolver::Impl::compute_active_ranges() {
+  if (!skip_resting) return;
+  if (!agrees_over_slabs()) {
+#pragma omp single
+    {
+      left_reference = rest_reference_of(at(0, ny - 1));
+      right_reference = rest_reference_of(at(nx - 1, ny - 1));
+    }
+    scan_rest_rows();
   }
 #pragma omp for schedule(static)
   for (int j = 0; j < ny; ++j) {
     const auto k = static_cast<std::size_t>(j);
-    const ActiveRange r =
-        active_range(rest_to.data() + j, rest_from.data() + j, 2 * ng + 1, source_rows[k], nx);
-    row_lo[k] = r.lo;
-    row_hi[k] = r.hi;
+    const ActiveRange r = active_range(rest_to.data() + j, rest_from.data() + j, 2 * ng + 1,
+                                       source_rows[k], rest_agreement.whole_columns);
+    set_row_range(k, r.lo, r.hi);
   }
 }
 
-/// Where each row has sources this step (they are held constant over the step).
+/// Where each row has sources this step (they are held constant over the step), in the whole
+/// grid's columns.
 void GasSolver::Impl::find_source_rows() {
   if (!skip_resting) return;
+  const int first = rest_agreement.first_column;
 #pragma omp parallel for if (threaded) schedule(static)
   for (int j = 0; j < ny; ++j) {
     const std::size_t c = at(0, j);
     const double* const rows[Conserved::kCount] = {
         source[Conserved::kMass].data() + c, source[Conserved::kMomentumX].data() + c,
         source[Conserved::kMomentumY].data() + c, source[Conserved::kEnergy].data() + c};
-    source_rows[static_cast<std::size_t>(j)] = source_extent(rows, nx);
+    SourceExtent e = source_extent(rows, nx);
+    e = e.last >= 0 ? SourceExtent{e.first + first, e.last + first}
+                    : SourceExtent{rest_agreement.whole_columns, -1};
+    source_rows[static_cast<std::size_t>(j)] = e;
   }
 }
 
 /// Ranges of the next stage from this step's first: a stage changes only cells in its
 /// ranges, so a cell further than the stencil reach (2 cells, 2 rows) from all of them
-/// still has the resting stencil it had (exact; cheaper than scanning again).
+/// still has the resting stencil it had (exact; cheaper than scanning again). In the whole
+/// grid's columns, so that every slab widens the ranges one grid would.
 void GasSolver::Impl::widen_active_ranges() {
   if (!skip_resting) return;
+  const int columns = rest_agreement.whole_columns;
 #pragma omp single
   {
-    widened_lo_ = row_lo;
-    widened_hi_ = row_hi;
+    widened_lo_ = whole_lo;
+    widened_hi_ = whole_hi;
     for (int j = 0; j < ny; ++j) {
-      int lo = nx, hi = 0;
+      int lo = columns, hi = 0;
       for (int r = std::max(j - ng, 0); r <= std::min(j + ng, ny - 1); ++r) {
         const auto k = static_cast<std::size_t>(r);
         if (widened_lo_[k] >= widened_hi_[k]) continue;
         lo = std::min(lo, widened_lo_[k] - ng);
         hi = std::max(hi, widened_hi_[k] + ng);
       }
-      // The edge cells read ghosts copied from another process's cells: where its previous
-      // stage updated those (within the stencil's rows), they are updated too.
-      if (has_collective_fillers()) {
+      // Exact skipping on a slab (its own columns): the edge cells read ghosts copied from
+      // another process's cells; where its previous stage updated those (within the stencil's
+      // rows), they are updated too. Slabs that agree widen the same whole ranges instead.
+      if (has_collective_fillers() && !agrees_over_slabs()) {
         const int r0 = std::max(j - ng, 0), r1 = std::min(j + ng, ny - 1) + 1;
         const auto changed = [&](GridSide side) {
           const std::size_t k = side_index(side);
           return !local[k] && filler[k]->changed_beyond(side, r0, r1);
         };
-        const bool left = changed(GridSide::Left), right = changed(GridSide::Right);
-        if (left) {
+        if (changed(GridSide::Left)) {
           lo = std::min(lo, 0);
           hi = std::max(hi, std::min(ng, nx));
         }
-        if (right) {
+        if (changed(GridSide::Right)) {
           lo = std::min(lo, std::max(nx - ng, 0));
           hi = std::max(hi, nx);
         }
       }
       lo = std::max(lo, 0);
-      hi = std::min(hi, nx);
-      row_lo[static_cast<std::size_t>(j)] = lo < hi ? lo : 0;
-      row_hi[static_cast<std::size_t>(j)] = lo < hi ? hi : 0;
+      hi = std::min(hi, columns);
+      set_row_range(static_cast<std::size_t>(j), lo < hi ? lo : 0, lo < hi ? hi : 0);
     }
   }
 }

@@ -128,6 +128,8 @@ void GasSolver::Impl::stage(const Th& th, double dt, double c_new) {
   // Collective fillers need the ghosts filled outside the stage's parallel region.
   const bool collective_fill = has_collective_fillers();
   if (collective_fill) fill_ghosts();
+  // So are the slabs' agreements on what rests (collectives too).
+  if (c_new == 1.0 && skip_resting && agrees_over_slabs()) agree_rest_rows();
 #pragma omp parallel if (threaded)
   {
     if (!collective_fill) fill_local_ghosts();

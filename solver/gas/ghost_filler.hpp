@@ -26,7 +26,8 @@ constexpr bool is_x_side(GridSide s) {
 struct PrimitiveGhosts {
   std::array<Field2D*, Primitive::kCount> fields;  ///< rho, u, v, p, T
   /// Per interior row j, the cells [updated_lo[j], updated_hi[j]) the solver's last stage
-  /// updated (none when lo >= hi); null when it does not skip resting cells.
+  /// updated (none when lo >= hi); null when it does not skip resting cells or agrees its
+  /// ranges with the other parts (RestAgreement).
   const int* updated_lo = nullptr;
   const int* updated_hi = nullptr;
 };

@@ -38,6 +38,24 @@ inline RestReference rest_reference(double u, double v, double p, double T, doub
   return r;
 }
 
+/// A reference as doubles (valid as 1 or 0), for a collective over the slabs of a grid, and
+/// back: the slabs take the whole grid's reference from the slab that holds its cell.
+inline constexpr int kRestReferenceValues = 6;
+inline void pack_rest_reference(const RestReference& r, double* out) {
+  const double values[kRestReferenceValues] = {r.valid ? 1.0 : 0.0, r.p, r.T, r.du, r.dp, r.dT};
+  for (int q = 0; q < kRestReferenceValues; ++q) out[q] = values[q];
+}
+inline RestReference unpack_rest_reference(const double* in) {
+  RestReference r;
+  r.valid = in[0] > 0.5;
+  r.p = in[1];
+  r.T = in[2];
+  r.du = in[3];
+  r.dp = in[4];
+  r.dT = in[5];
+  return r;
+}
+
 /// One grid row's u, v, p, T from its first cell on, `n` cells.
 struct RowView {
   const double* u;

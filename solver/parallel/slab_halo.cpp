@@ -23,6 +23,8 @@ void SlabHalo::attach(GasSolver& gas) {
   gas.set_fault_reporting({layout_.first_column(), [&comm](const std::string& local) {
                              return comm.first_nonempty(local);
                            }});
+  gas.set_rest_agreement({layout_.first_column(), layout_.bounds.back(),
+                          [&comm](std::span<double> values) { comm.min_each(values); }});
 }
 
 void SlabHalo::fill(const PrimitiveGhosts& ghosts) {

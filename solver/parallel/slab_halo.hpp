@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/communicator.hpp"
 #include "solver/coupling/gas_halo.hpp"
 #include "solver/gas/ghost_filler.hpp"
-#include "solver/core/communicator.hpp"
 #include "solver/parallel/slab_decomposition.hpp"
 
 namespace dustlift {
@@ -20,8 +20,9 @@ class SlabHalo final : public GasHalo, public GhostFiller {
   SlabHalo(const Communicator& comm, SlabLayout layout, const Grid2D& slab_grid);
 
   /// Makes `gas` (on this slab's grid) one slab of the whole: its ghosts at the cuts filled
-  /// from the neighbours, its fault checks agreed over the ranks and naming cells by their
-  /// column in the whole grid. Before gas.initialize(); this halo must outlive `gas`'s steps.
+  /// from the neighbours, its fault checks and its skipping within run.rest_tolerance agreed
+  /// over the ranks, naming cells by their column in the whole grid. Before gas.initialize();
+  /// this halo must outlive `gas`'s steps.
   void attach(GasSolver& gas);
 
   bool owns_left_boundary() const override { return layout_.owns_left_boundary(); }

@@ -12,7 +12,7 @@
 namespace dustlift::scene_detail {
 
 void parse_run(TableReader t, RunConfig& run) {
-  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest",
+  t.expect_keys({"name", "end_time", "max_steps", "progress_interval", "skip_at_rest", "exact",
                  "rest_tolerance", "rebalance_steps", "allow_implausible"});
   run.name = t.string("name", run.name);
   run.end_time = t.required_number("end_time", Range::positive());
@@ -20,7 +20,17 @@ void parse_run(TableReader t, RunConfig& run) {
   run.progress_interval =
       t.number("progress_interval", run.progress_interval, Range::non_negative());
   run.skip_at_rest = t.boolean("skip_at_rest", run.skip_at_rest);
-  run.rest_tolerance = t.number("rest_tolerance", run.rest_tolerance, Range::closed(0.0, 1e-6));
+  run.exact = t.boolean("exact", run.exact);
+  // The default tolerance holds only while skipping within one: exact skipping and no
+  // skipping derive 0 (so the resolved scene runs again as it is).
+  const bool within = run.skip_at_rest && !run.exact;
+  run.rest_tolerance = t.derived_number(
+      "rest_tolerance", within ? run.rest_tolerance : 0.0,
+      fmt::format("run.exact and run.skip_at_rest: {:g} when skipping, 0 when exact or not",
+                  run.rest_tolerance),
+      Range::closed(0.0, 1e-6));
+  if (run.rest_tolerance > 0.0 && run.exact)
+    t.fail("exact", "= true skips only what rests exactly: leave run.rest_tolerance out or 0");
   if (run.rest_tolerance > 0.0 && !run.skip_at_rest)
     t.fail("rest_tolerance",
            "needs skip_at_rest = true (it widens what skipping counts as at rest)");

@@ -17,11 +17,12 @@ constexpr SceneKeyDoc kDocs[] = {
     {"run.end_time", "s", "simulated time at which the run ends"},
     {"run.max_steps", "1", "stop after this many steps (0: no limit)"},
     {"run.progress_interval", "s", "wall time between progress lines in the log"},
-    {"run.skip_at_rest", "",
-     "skip gas cells and parcels that rest exactly (bitwise the same results)"},
+    {"run.skip_at_rest", "", "skip gas cells and parcels that rest (false: compute every one)"},
+    {"run.exact", "",
+     "skip only what rests exactly: bitwise the results of no skipping (run.rest_tolerance 0)"},
     {"run.rest_tolerance", "1",
-     "also skip what is within this relative change of rest (changes results at that level; one "
-     "MPI rank)"},
+     "skip what is within this relative change of rest too (changes results at that level, "
+     "within the chaos floor; 0: exact)"},
     {"run.rebalance_steps", "1",
      "MPI: steps between moves of the slab cuts that follow the work (0: never)"},
     {"run.allow_implausible", "",

@@ -51,7 +51,7 @@ void gas_effects(const Scene& scene, std::vector<std::string>& e) {
   else if (scene.run.rest_tolerance > 0.0)
     e.push_back("skipping at rest: within a relative " + fmt_number(scene.run.rest_tolerance) +
                 " of the resting state (also skips the rounding noise ahead of a shock; results "
-                "change at that level)");
+                "change at that level; run.exact = true skips only what rests exactly)");
   else
     e.push_back("skipping at rest: exact (bitwise the same results as without)");
   const InitialCondition& ic = scene.initial;

@@ -30,13 +30,6 @@ Simulation::Simulation(const Scene& scene, const Communicator* comm)
                        ": key 'boundary.left' = \"periodic\" with [particles] needs one MPI rank "
                        "(a periodic channel's parcels are not split over ranks yet)");
     }
-    if (scene_.run.rest_tolerance > 0.0) {
-      // The rest references are each slab's own: exact skipping does not depend on them, a
-      // tolerance would (docs/parallel.md).
-      throw SceneError(scene_.source_file +
-                       ": key 'run.rest_tolerance' > 0 needs one MPI rank (it makes the "
-                       "results depend on the decomposition); set it to 0");
-    }
     slabs_ = std::make_unique<SlabDriver>(*this, *comm);
   }
   gas_->initialize(scene_.initial);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "insitu/checkpoint.hpp"
 #include "mpi/mpi_test_main.hpp"
 #include "solver/dem/parcel_system.hpp"
 #include "solver/parallel/world.hpp"
@@ -217,6 +218,66 @@ TEST(SlabCoupled, ClassParcelsRestitutionAndCohesionOnTwoRanksMatchOneRankBitFor
     EXPECT_EQ(differences(scene, kSteps, two, threads, names), 0)
         << threads << " thread(s): " << names;
   }
+}
+
+/// The arrays (of every type) of two snapshots that differ in any bit or exist in one only.
+template <class Map>
+void differing_arrays(const Map& a, const Map& b, std::string& names) {
+  for (const auto& [key, values] : a) {
+    const auto it = b.find(key);
+    if (it == b.end() || !same_bits(values, it->second)) names += key + " ";
+  }
+  for (const auto& [key, values] : b) {
+    if (a.find(key) == a.end()) names += key + " ";
+  }
+}
+std::string differing_datasets(const Snapshot& a, const Snapshot& b) {
+  std::string names;
+  differing_arrays(a.f64, b.f64, names);
+  differing_arrays(a.i64, b.i64, names);
+  differing_arrays(a.i32, b.i32, names);
+  differing_arrays(a.i8, b.i8, names);
+  return names;
+}
+
+TEST(SlabCoupled, SkippingWithinAToleranceOnTwoRanksMatchesOneRank) {
+  ASSERT_EQ(world().size(), 2) << "run under mpirun -np 2";
+  // run.rest_tolerance skips gas and parcels that rest within 1e-10 of the reference, which
+  // changes bits (below: against exact skipping); each slab must skip what one grid skips.
+  const Scene scene = reduced_quickstart();  // within the default 1e-10
+  constexpr int kSteps = 150, kCheckpoint = 75;
+  omp_set_num_threads(1);
+  Simulation two(scene, &world());
+  ASSERT_TRUE(two.decomposed());
+  advance_steps(two, kCheckpoint);
+  // The checkpoint two ranks write (rank 0's gathered snapshot), read back by every rank.
+  const Snapshot written = two.snapshot();  // collective
+  if (world().is_root()) write_checkpoint("slab_coupled_tolerance_75.h5", written);
+  world().barrier();
+  const Snapshot at_checkpoint = read_checkpoint("slab_coupled_tolerance_75.h5");
+  advance_steps(two, kSteps - kCheckpoint);
+  const Snapshot uninterrupted = two.snapshot();
+  for (int threads : {1, 2}) {
+    std::string names;
+    EXPECT_EQ(differences(scene, kSteps, two, threads, names), 0)
+        << threads << " thread(s): " << names;
+  }
+  if (!world().is_root()) return;
+  // Every dataset of the checkpoint a run writes: one rank from the start, and one rank
+  // continuing the two ranks' checkpoint.
+  Simulation one(scene);
+  advance_steps(one, kSteps);
+  EXPECT_EQ(differing_datasets(one.snapshot(), uninterrupted), "") << "one rank";
+  Simulation resumed(scene);
+  resumed.restore(at_checkpoint);
+  advance_steps(resumed, kSteps - kCheckpoint);
+  EXPECT_EQ(differing_datasets(resumed.snapshot(), uninterrupted), "")
+      << "one rank from the two ranks' checkpoint";
+  // The tolerance mattered: exact skipping gives other bits and updates more gas cells.
+  Simulation exact(reduced_quickstart({"run.exact=true"}));
+  advance_steps(exact, kSteps);
+  EXPECT_NE(differing_datasets(exact.snapshot(), uninterrupted), "");
+  EXPECT_LT(one.gas().cell_updates(), exact.gas().cell_updates());
 }
 
 TEST(SlabCoupled, CutsThatFollowTheWorkChangeNothing) {

@@ -195,7 +195,9 @@ TEST(MpiCli, TwoRanksWriteWhatOneRankWrites) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_command(mpirun2() + " run " + kShock + " --out " + (dir / "two").string() + common);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(read_all(dir / "two" / "run.log").find("on 2 ranks, x-slabs of 600, 600 columns"),
+  // Skipping within the default tolerance leaves the gas ahead of the shock alone, so the cuts
+  // follow the shock (from 600, 600 columns; 200, 1000 at the end, measured).
+  EXPECT_NE(read_all(dir / "two" / "run.log").find("on 2 ranks, x-slabs of 200, 1000 columns"),
             std::string::npos);
   EXPECT_EQ(differing_anywhere(dustlift::read_checkpoint((dir / "one" / "checkpoint.h5").string()),
                                dustlift::read_checkpoint((dir / "two" / "checkpoint.h5").string())),

@@ -174,7 +174,20 @@ TEST(Scene, OneNarrowCellAtAWallPutsCellCentresOnTheNodeCentredPoints) {
 }
 
 TEST(Scene, RestToleranceIsCheckedAndNamed) {
-  EXPECT_EQ(parse_scene(kMinimal, "scene.toml").run.rest_tolerance, 0.0);  // exact by default
+  // Skipping within 1e-10 by default; run.exact = true skips only what rests exactly.
+  EXPECT_EQ(parse_scene(kMinimal, "scene.toml").run.rest_tolerance, 1e-10);
+  EXPECT_FALSE(parse_scene(kMinimal, "scene.toml").run.exact);
+  EXPECT_EQ(parse_scene(kMinimal, "scene.toml", {"run.exact=true"}).run.rest_tolerance, 0.0);
+  EXPECT_EQ(parse_scene(kMinimal, "scene.toml", {"run.rest_tolerance=0"}).run.rest_tolerance, 0.0);
+  // Both at once contradict each other: refused, naming run.exact.
+  const std::string both = error_of(kMinimal, {"run.exact=true", "run.rest_tolerance=1e-10"});
+  EXPECT_NE(both.find("run.exact"), std::string::npos) << both;
+  EXPECT_EQ(
+      parse_scene(kMinimal, "scene.toml", {"run.exact=true", "run.rest_tolerance=0"}).run.exact,
+      true);
+  // The resolved scene of an exact run runs again as it is (its tolerance derived, not 1e-10).
+  const Scene exact = parse_scene(kMinimal, "scene.toml", {"run.exact=true"});
+  EXPECT_EQ(parse_scene(exact.resolved_toml, "resolved.toml").run.rest_tolerance, 0.0);
   EXPECT_DOUBLE_EQ(
       parse_scene(kMinimal, "scene.toml", {"run.rest_tolerance=1e-10"}).run.rest_tolerance, 1e-10);
   for (const char* bad : {"run.rest_tolerance=1e-3", "run.rest_tolerance=-1e-12"}) {

@@ -16,43 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/csv.hpp"
 #include "tests/support/run_cli.hpp"
 
 namespace dustlift::testing {
 namespace {
-
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  std::size_t column(const std::string& name) const {
-    for (std::size_t k = 0; k < header.size(); ++k)
-      if (header[k] == name) return k;
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-};
-
-Csv read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  Csv csv;
-  std::string line;
-  bool first = true;
-  while (std::getline(in, line)) {
-    std::stringstream s(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(s, cell, ',')) {
-      if (first) {
-        csv.header.push_back(cell);
-      } else {
-        row.push_back(std::stod(cell));  // "nan" reads as NaN
-      }
-    }
-    if (!first) csv.rows.push_back(row);
-    first = false;
-  }
-  return csv;
-}
 
 /// The reduced quickstart (a 15 mm layer in a 30 mm x 10 mm channel, to 0.1 ms) into `out`.
 CliResult run_reduced_quickstart(const std::filesystem::path& out, int threads,
