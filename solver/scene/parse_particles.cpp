@@ -388,14 +388,12 @@ void parse_generated_layer(TableReader& t, TableReader& lt, TableReader& sd, Dem
   check_parcel_count(t, dem, z, n.area);
   if (z.class_parcels) {
     L.touching_columns = lt.boolean("touching_columns", L.touching_columns);
-  } else if (lt.has("touching_columns")) {
-    lt.fail("touching_columns",
-            "only with particles.parcel_ratio and a size distribution (columns of one class "
-            "each)");
-  }
-  if (z.class_parcels) {
     n.class_counts = plan_class_parcels(t, lt, dem);
   } else {
+    if (lt.has("touching_columns"))
+      lt.fail("touching_columns",
+              "only with particles.parcel_ratio and a size distribution (columns of one class "
+              "each)");
     plan_lattice_layer(lt, dem, z, sd, n);
   }
 }
