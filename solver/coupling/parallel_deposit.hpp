@@ -62,11 +62,19 @@ class ParallelDeposit {
     // One rank's stencils all lie in [0, nx): run() then skips the test per entry.
     all_inside_ = !outside;
     // The parcels that reach a shared column, in parcel order (chunk by chunk).
-    deferred_by_chunk_.resize(static_cast<std::size_t>(threads));
+    // One list per thread the run may use, each reserved once for a chunk's share of all the
+    // stencils: a growing active region (skipping within a tolerance) then never reallocates
+    // them, not even when it grows past parallel_minimum. Unused lists stay empty.
+    const std::size_t slots = static_cast<std::size_t>(std::max(threads, omp_get_max_threads()));
+    if (deferred_by_chunk_.size() < slots) deferred_by_chunk_.resize(slots);
+    const std::size_t most = (stencils.size() + slots - 1) / slots;
+    for (std::vector<std::size_t>& list : deferred_by_chunk_) {
+      if (list.capacity() < most) list.reserve(most);
+      list.clear();
+    }
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1)
     for (int c = 0; c < threads; ++c) {
       std::vector<std::size_t>& list = deferred_by_chunk_[static_cast<std::size_t>(c)];
-      list.clear();
       if (threads == 1) continue;
       for (std::size_t k = chunk_start_[static_cast<std::size_t>(c)]; k < chunk_start_[static_cast<std::size_t>(c) + 1]; ++k) {
         const DepositStencil& d = stencils[k];
