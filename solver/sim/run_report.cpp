@@ -6,6 +6,7 @@
 #include "solver/dem/contact_summary.hpp"
 #include "solver/gas/shock_relations.hpp"
 #include "solver/laws/contact.hpp"
+#include "solver/sim/layer_resolution.hpp"
 #include "solver/sim/simulation.hpp"
 #include "solver/sim/slab_driver.hpp"
 
@@ -99,6 +100,10 @@ std::vector<std::string> Simulation::enabled_effects() const {
   const auto& d = scene_.particles;
   const auto& c = scene_.coupling;
   e.push_back(particles_line(d, parcels_ ? parcels_->size() : 0));
+  if (d.layer_parcels.empty()) {
+    const std::string w = layer_resolution_warning(whole_grid_.y(), d.layer.y_min, d.layer.y_max);
+    if (!w.empty()) e.push_back(w);
+  }
   for (std::string& line : contact_descriptions(d)) e.push_back(std::move(line));
   e.push_back(c.two_way ? "coupling: two-way (porosity, exchange terms f_p, s_p, q_p)"
                         : "coupling: one-way (gas does not feel the particles)");
