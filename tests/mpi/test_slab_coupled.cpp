@@ -280,6 +280,54 @@ TEST(SlabCoupled, SkippingWithinAToleranceOnTwoRanksMatchesOneRank) {
   EXPECT_LT(one.gas().cell_updates(), exact.gas().cell_updates());
 }
 
+TEST(SlabCoupled, HybridRanksAndThreadsRestartFromACheckpointOfAnyLayout) {
+  ASSERT_EQ(world().size(), 2) << "run under mpirun -np 2";
+  // Two ranks of two threads each against one rank of one thread, in the default skipping:
+  // each layout continues the other's checkpoint, and every dataset of the checkpoint it then
+  // writes is the uninterrupted one-rank run's.
+  const Scene scene = reduced_quickstart();
+  constexpr int kSteps = 150, kCheckpoint = 75;
+  const int before = omp_get_max_threads();
+  Snapshot one_at_checkpoint, one_at_end;
+  if (world().is_root()) {
+    omp_set_num_threads(1);
+    Simulation one(scene);
+    advance_steps(one, kCheckpoint);
+    one_at_checkpoint = one.snapshot();
+    write_checkpoint("slab_coupled_hybrid_one_75.h5", one_at_checkpoint);
+    advance_steps(one, kSteps - kCheckpoint);
+    one_at_end = one.snapshot();
+  }
+  omp_set_num_threads(2);
+  Simulation hybrid(scene, &world());
+  ASSERT_TRUE(hybrid.decomposed());
+  advance_steps(hybrid, kCheckpoint);
+  const Snapshot hybrid_at_checkpoint = hybrid.snapshot();  // collective
+  if (world().is_root()) write_checkpoint("slab_coupled_hybrid_two_75.h5", hybrid_at_checkpoint);
+  advance_steps(hybrid, kSteps - kCheckpoint);
+  const Snapshot hybrid_at_end = hybrid.snapshot();
+  world().barrier();
+  // Two ranks of two threads from the one-rank checkpoint, as `dustlift run --restart` reads it.
+  Simulation hybrid_resumed(scene, &world());
+  hybrid_resumed.restore(read_checkpoint("slab_coupled_hybrid_one_75.h5"));
+  advance_steps(hybrid_resumed, kSteps - kCheckpoint);
+  const Snapshot hybrid_from_one = hybrid_resumed.snapshot();
+  omp_set_num_threads(before);
+  if (!world().is_root()) return;
+  EXPECT_EQ(differing_datasets(hybrid_at_checkpoint, one_at_checkpoint), "")
+      << "2 ranks x 2 threads at the checkpoint";
+  EXPECT_EQ(differing_datasets(hybrid_at_end, one_at_end), "") << "2 ranks x 2 threads";
+  EXPECT_EQ(differing_datasets(hybrid_from_one, one_at_end), "")
+      << "2 ranks x 2 threads from the one-rank checkpoint";
+  omp_set_num_threads(1);
+  Simulation one_resumed(scene);
+  one_resumed.restore(read_checkpoint("slab_coupled_hybrid_two_75.h5"));
+  advance_steps(one_resumed, kSteps - kCheckpoint);
+  omp_set_num_threads(before);
+  EXPECT_EQ(differing_datasets(one_resumed.snapshot(), one_at_end), "")
+      << "1 rank x 1 thread from the hybrid checkpoint";
+}
+
 TEST(SlabCoupled, CutsThatFollowTheWorkChangeNothing) {
   // The cuts recomputed every 10 steps from the cells and parcels each column costs: the
   // parcels move to their new ranks with their contact lists, alpha_p with the gas. The
