@@ -15,8 +15,7 @@ void RestingParcels::agree_over_slabs(const GasSolver& gas, const Grid2D& grid,
   constexpr double kNone = -std::numeric_limits<double>::infinity();
   const bool last = slab.halo->owns_right_boundary();
   double reference[kRestReferenceValues];
-  pack_rest_reference(gas.rest_reference(), reference);
-  if (!last) std::fill(reference, reference + kRestReferenceValues, kNone);
+  pack_rest_reference(gas.rest_reference(), last, kNone, reference);
   slab.max_each(reference);
   gas.resting_gas(resting_, unpack_rest_reference(reference));
   // Per row, the first whole-grid column from which the row rests to the domain's end: the

@@ -1,8 +1,8 @@
 // A slab's skipping of resting cells decided as on the whole grid (RestAgreement): the
 // references are the whole grid's corner cells, and per row the resting ends and the sources
 // are the whole grid's, agreed by two element-wise minima over the slabs per step.
-#include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "solver/gas/gas_solver_impl.hpp"
 
@@ -11,14 +11,6 @@ namespace dustlift {
 namespace {
 
 constexpr double kNone = std::numeric_limits<double>::infinity();  // the minimum's identity
-constexpr int kReferenceValues = kRestReferenceValues;
-
-/// The reference as doubles from the slab that holds its cell (`own`), the minimum's identity
-/// from the others.
-void pack_reference(const RestReference& r, bool own, double* out) {
-  pack_rest_reference(r, out);
-  if (!own) std::fill(out, out + kReferenceValues, kNone);
-}
 
 }  // namespace
 
@@ -34,12 +26,13 @@ void GasSolver::Impl::agree_rest_rows() {
   const RestAgreement& a = rest_agreement;
   const int first = a.first_column;
   const bool first_slab = first == 0, last_slab = first + nx == a.whole_columns;
-  double references[2 * kReferenceValues];
-  pack_reference(rest_reference_of(at(0, ny - 1)), first_slab, references);
-  pack_reference(rest_reference_of(at(nx - 1, ny - 1)), last_slab, references + kReferenceValues);
+  double references[2 * kRestReferenceValues];
+  pack_rest_reference(rest_reference_of(at(0, ny - 1)), first_slab, kNone, references);
+  pack_rest_reference(rest_reference_of(at(nx - 1, ny - 1)), last_slab, kNone,
+                      references + kRestReferenceValues);
   a.min_each(references);
   left_reference = unpack_rest_reference(references);
-  right_reference = unpack_rest_reference(references + kReferenceValues);
+  right_reference = unpack_rest_reference(references + kRestReferenceValues);
 #pragma omp parallel if (threaded)
   scan_rest_rows();
   const auto rows = static_cast<std::size_t>(ny + 2 * ng), interior = static_cast<std::size_t>(ny);

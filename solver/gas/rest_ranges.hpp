@@ -45,6 +45,14 @@ inline void pack_rest_reference(const RestReference& r, double* out) {
   const double values[kRestReferenceValues] = {r.valid ? 1.0 : 0.0, r.p, r.T, r.du, r.dp, r.dT};
   for (int q = 0; q < kRestReferenceValues; ++q) out[q] = values[q];
 }
+/// The same from every slab, where only the slab that `holds` the reference's cell gives it and
+/// the others give `identity` (the identity of the collective that combines them: +inf for a
+/// minimum, -inf for a maximum), so that the collective leaves every slab the holder's values.
+inline void pack_rest_reference(const RestReference& r, bool holds, double identity, double* out) {
+  pack_rest_reference(r, out);
+  if (!holds)
+    for (int q = 0; q < kRestReferenceValues; ++q) out[q] = identity;
+}
 inline RestReference unpack_rest_reference(const double* in) {
   RestReference r;
   r.valid = in[0] > 0.5;
