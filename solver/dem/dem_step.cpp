@@ -98,6 +98,20 @@ struct ContactParcel {
   double fx = 0.0, fy = 0.0, tq = 0.0;
 };
 
+/// Where slot k's partner j sits from a parcel at (xi, yi) of radius ri: (dx, dy), its square
+/// d2, and the radii's sum rs. One expression for the slot-wise and parcel-wise passes, so
+/// both decide "touching" (d2 < rs^2) alike, to the bit.
+struct Separation {
+  double dx, dy, d2, rs;
+};
+[[gnu::always_inline]] inline Separation slot_separation(const double* px, const double* py,
+                                                         const double* pr, const std::int8_t* image,
+                                                         double lx, double xi, double yi, double ri,
+                                                         std::int32_t j, std::int32_t k) {
+  const double dx = (px[j] + image[k] * lx) - xi, dy = py[j] - yi;
+  return {dx, dy, dx * dx + dy * dy, ri + pr[j]};
+}
+
 /// The contact pass's laws and columns (ParcelSystem::contacts_pass), and what it does for
 /// one parcel. Its members, the active contact units' forces included, are inlined into the
 /// pass's loop: no call per parcel or pair.
@@ -137,6 +151,11 @@ struct ContactKernel {
     tq_out[i] = p.tq;
   }
 
+  /// Whether parcel i has a contact force (touches a partner or a wall).
+  [[gnu::always_inline]] inline bool forced(std::size_t i) const {
+    return fx_out[i] != 0.0 || fy_out[i] != 0.0;
+  }
+
   /// Adds one pair's per-real-particle force on i (the pair rule between counts).
   [[gnu::always_inline]] inline void add_pair(ContactParcel& p, std::int32_t j, double pfx,
                                               double pfy, double ptq) const {
@@ -157,22 +176,32 @@ struct ContactKernel {
     }
   }
 
+  [[gnu::always_inline]] inline Separation separation(double xi, double yi, double ri,
+                                                      std::int32_t j, std::int32_t k) const {
+    return slot_separation(px, py, pr, nim, lx, xi, yi, ri, j, k);
+  }
+
   /// The pair in neighbour slot k.
   [[gnu::always_inline]] inline void pair(ContactParcel& p, std::int32_t k) const {
-    const std::size_t i = p.i;
     const std::int32_t j = nj[k];
-    const double rj = pr[j];
-    const double dx = (px[j] + nim[k] * lx) - p.x, dy = py[j] - p.y;
-    const double rs = p.r + rj;
-    const double d2 = dx * dx + dy * dy;
-    if (d2 >= rs * rs) {
+    const Separation sep = separation(p.x, p.y, p.r, j, k);
+    if (sep.d2 >= sep.rs * sep.rs) {
       // Not touching: the tangential spring is released (written only when it held
       // something: most slots are idle, and stores to them dominated the profile).
       if (ndelta[k] != 0.0) ndelta[k] = 0.0;
       // The units' attraction across the gap, along (dx, dy) towards j.
-      (pair_gap(std::get<Units>(units), p, j, dx, dy, d2, rs), ...);
+      (pair_gap(std::get<Units>(units), p, j, sep.dx, sep.dy, sep.d2, sep.rs), ...);
       return;
     }
+    touching_pair(p, k, j, sep.dx, sep.dy, sep.d2, sep.rs);
+  }
+
+  /// Slot k's pair with j, known to touch (separation (dx, dy), d2 < rs^2).
+  [[gnu::always_inline]] inline void touching_pair(ContactParcel& p, std::int32_t k, std::int32_t j,
+                                                   double dx, double dy, double d2,
+                                                   double rs) const {
+    const std::size_t i = p.i;
+    const double rj = pr[j];
     const double dist = std::sqrt(d2);
     // Coincident centres have no normal; pick one from the ids so both sides agree.
     double nx, ny;
@@ -198,6 +227,99 @@ struct ContactKernel {
     // The units' attraction along n, towards j, added to the spring-dashpot force.
     (pair_touching(std::get<Units>(units), c, i, j, nx, ny), ...);
     add_pair(p, j, c.fx, c.fy, c.torque);
+  }
+
+  /// Parcels [i0, i1) slot by slot, for a pass without contact units (nothing acts across a
+  /// gap): in blocks of listed slots, one branch-free loop finds each slot's parcel and
+  /// whether its pair touches, then only the touching pairs are computed, then the walls.
+  /// Per parcel the sums are those of parcel(): its pairs in slot order, then its walls.
+  /// Most slots of a layer are idle, and a loop per parcel over a few slots each spent its
+  /// time on the loop's exits, not on the pairs.
+  /// Returns how many pairs touch.
+  [[gnu::noinline]] std::int32_t parcels_by_slots(std::size_t i0, std::size_t i1) const {
+    static_assert(sizeof...(Units) == 0, "units acting across a gap need every slot visited");
+    for (std::size_t i = i0; i < i1; ++i) fx_out[i] = fy_out[i] = tq_out[i] = 0.0;
+    const std::int32_t k_end = off[i1];
+    std::int32_t touching_pairs = 0;
+    std::size_t owner = i0;  // the parcel of the block's first slot
+    for (std::int32_t s0 = off[i0]; s0 < k_end; s0 += kSlotBlock) {
+      const std::int32_t s1 = std::min(s0 + kSlotBlock, k_end);
+      while (off[owner + 1] <= s0) ++owner;
+      std::size_t last = owner;  // the parcel of the block's last slot
+      while (off[last + 1] < s1) ++last;
+      // Slot s belongs to the last parcel whose list starts at or before s: count the
+      // parcels starting at each slot of the block, then sum along the block.
+      std::int32_t starts[kSlotBlock];
+      for (std::int32_t s = 0; s < s1 - s0; ++s) starts[s] = 0;
+      for (std::size_t i = owner + 1; i <= last; ++i) ++starts[off[i] - s0];
+      std::int32_t owners[kSlotBlock];
+      auto running = static_cast<std::int32_t>(owner);
+      for (std::int32_t s = 0; s < s1 - s0; ++s) owners[s] = running += starts[s];
+      std::int32_t touching[kSlotBlock];
+      const std::int32_t n_touching = find_touching(s0, s1, owners, touching);
+      touching_pairs += n_touching;
+      // Each parcel's touching pairs in slot order, summed onto what its earlier blocks'
+      // pairs gave (the same operations as parcel()'s, fused multiply-adds included).
+      for (std::int32_t t = 0; t < n_touching;) {
+        const auto i = static_cast<std::size_t>(owners[touching[t] - s0]);
+        ContactParcel p{i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
+        p.fx = fx_out[i];
+        p.fy = fy_out[i];
+        p.tq = tq_out[i];
+        for (; t < n_touching && static_cast<std::size_t>(owners[touching[t] - s0]) == i; ++t) {
+          const std::int32_t k = touching[t], j = nj[k];
+          const Separation sep = separation(p.x, p.y, p.r, j, k);
+          touching_pair(p, k, j, sep.dx, sep.dy, sep.d2, sep.rs);
+        }
+        fx_out[i] = p.fx;
+        fy_out[i] = p.fy;
+        tq_out[i] = p.tq;
+      }
+    }
+    for (std::size_t i = i0; i < i1; ++i) {
+      const unsigned mask = wmask[i];
+      if (mask == 0 || (copy != nullptr && copy[i] != 0)) continue;
+      ContactParcel p{i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
+      p.fx = fx_out[i];
+      p.fy = fy_out[i];
+      p.tq = tq_out[i];
+      for (int w = 0; w < n_walls; ++w) {
+        if ((mask & (1u << walls[w].slot)) != 0) wall(p, walls[w]);
+      }
+      fx_out[i] = p.fx;
+      fy_out[i] = p.fy;
+      tq_out[i] = p.tq;
+    }
+    return touching_pairs;
+  }
+  static constexpr std::int32_t kSlotBlock = 512;
+
+  /// Slots [s0, s1) whose pairs touch, listed in `touching` (returns how many); releases the
+  /// tangential spring of the others. Locals, not members, in the loop: through `this` they
+  /// would be reloaded after every store.
+  [[gnu::always_inline]] inline std::int32_t find_touching(std::int32_t s0, std::int32_t s1,
+                                                           const std::int32_t* owners,
+                                                           std::int32_t* touching) const {
+    const double *const x = px, *const y = py, *const r = pr;
+    const std::int32_t* const partner = nj;
+    const std::int8_t* const image = nim;
+    const std::uint8_t* const copied = copy;
+    double* const delta = ndelta;
+    const double length = lx;
+    std::int32_t n_touching = 0;
+    for (std::int32_t s = 0; s < s1 - s0; ++s) {
+      const std::int32_t k = s0 + s, i = owners[s];
+      const Separation sep =
+          slot_separation(x, y, r, image, length, x[i], y[i], r[i], partner[k], k);
+      const bool touches = sep.d2 < sep.rs * sep.rs;
+      // A rank copy's forces and springs are its owner's.
+      const bool skip = copied != nullptr && copied[i] != 0;
+      // Not touching: the tangential spring is released.
+      if (!touches && !skip && delta[k] != 0.0) delta[k] = 0.0;
+      touching[n_touching] = k;
+      n_touching += touches && !skip ? 1 : 0;
+    }
+    return n_touching;
   }
 
   /// The parcel against a wall within its reach.
@@ -265,6 +387,11 @@ struct ContactKernel {
 
 }  // namespace
 
+/// A chunk of parcels is computed parcel by parcel once 1 / kTouchingShareForParcelWise of its
+/// listed pairs touched in the last pass (measured: slot by slot was 1.4x faster on a loose
+/// layer with 1 % of its pairs touching, 1.5x slower on a resting bed with ~80 %).
+constexpr std::int32_t kTouchingShareForParcelWise = 16;
+
 template <bool Mixed, bool PairDamping, class... Units>
 void ParcelSystem::contacts_pass(double dt, const Units&... units) {
   const std::size_t n = stepped_count();
@@ -309,8 +436,38 @@ void ParcelSystem::contacts_pass(double dt, const Units&... units) {
   // parcels. Each parcel gathers its own forces: any schedule gives the same bits. Each thread
   // its own copy of the kernel: its members are then locals the compiler keeps in registers
   // (through the shared one they would be reloaded after every store).
+  if constexpr (sizeof...(Units) == 0) {
+    constexpr std::size_t chunk = kContactChunk;
+    const std::size_t chunks = (n + chunk - 1) / chunk;
+    // Sized once for all parcels (the stepped ones are a prefix of them): no allocation per step.
+    if (chunk_touching_.size() < (size() + chunk - 1) / chunk)
+      chunk_touching_.resize((size() + chunk - 1) / chunk, 0);
+#pragma omp parallel for schedule(dynamic, 1) firstprivate(k) if (n >= kParallelMinimum)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::size_t i0 = c * chunk, i1 = std::min(n, (c + 1) * chunk);
+      // Where few listed pairs touched in the last pass (a loose layer, a cloud) slot by slot
+      // is faster; in a resting bed most pairs touch and parcel by parcel is. Both give the
+      // same bits. `touching` counts the pairs that touched (slot by slot) or the parcels
+      // with a contact force (parcel by parcel), either a bound on the touching share.
+      const std::int32_t slots = nbr_offset[i1] - nbr_offset[i0];
+      std::int32_t& touching = chunk_touching_[c];
+      const bool by_slot = traversal_ == ContactTraversal::Adaptive
+                               ? touching < slots / kTouchingShareForParcelWise
+                               : traversal_ == ContactTraversal::BySlot;
+      if (by_slot) {
+        touching = k.parcels_by_slots(i0, i1);
+      } else {
+        // A copy whose address never escapes: its members then stay in registers.
+        const auto kernel = k;
+        for (std::size_t i = i0; i < i1; ++i) kernel.parcel(i);
+        touching = 0;
+        for (std::size_t i = i0; i < i1; ++i) touching += kernel.forced(i) ? 1 : 0;
+      }
+    }
+  } else {
 #pragma omp parallel for schedule(dynamic, 1024) firstprivate(k) if (n >= kParallelMinimum)
-  for (std::size_t i = 0; i < n; ++i) k.parcel(i);
+    for (std::size_t i = 0; i < n; ++i) k.parcel(i);
+  }
 }
 
 namespace {

@@ -91,6 +91,12 @@ class ParcelSystem : public ParcelTable {
   /// Number of parcel–parcel pairs in contact (each counted once) at the current positions.
   std::size_t contact_pair_count() const;
 
+  /// How the contact pass walks the neighbour list: per chunk of parcels, slot by slot where
+  /// few of its listed pairs touched in the last pass and parcel by parcel where many did
+  /// (Adaptive, what runs), or one way throughout. All three give the same bits.
+  enum class ContactTraversal { Adaptive, ByParcel, BySlot };
+  void set_contact_traversal(ContactTraversal t) { traversal_ = t; }
+
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long neighbour_rebuilds() const { return rebuilds_; }
@@ -279,6 +285,11 @@ class ParcelSystem : public ParcelTable {
 
   std::shared_ptr<const ParcelForcing> forcing_;
   bool parts_last_only_ = false;
+  /// Contact pass: parcels per chunk, and the pairs each chunk found touching in the last
+  /// pass (which way the next pass computes it; dem_step.cpp).
+  static constexpr std::size_t kContactChunk = 1024;
+  std::vector<std::int32_t> chunk_touching_;
+  ContactTraversal traversal_ = ContactTraversal::Adaptive;
   ParcelColumn stepped_;
   std::size_t stepped_count_ = static_cast<std::size_t>(-1);
   void update_stepped_count();
