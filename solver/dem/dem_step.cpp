@@ -432,17 +432,20 @@ void ParcelSystem::contacts_pass(double dt, const Units&... units) {
   k.tq_out = contact_torque.data();
   k.wmask = wall_mask.data();
   k.copy = rank_copy.empty() ? nullptr : rank_copy.data();
-  // Dynamic chunks: contacts cluster where the layer is disturbed, at one end of the x-ordered
-  // parcels. Each parcel gathers its own forces: any schedule gives the same bits. Each thread
-  // its own copy of the kernel: its members are then locals the compiler keeps in registers
-  // (through the shared one they would be reloaded after every store).
+  // Each parcel gathers its own forces: any schedule gives the same bits. Each thread its own
+  // copy of the kernel: its members are then locals the compiler keeps in registers (through
+  // the shared one they would be reloaded after every store). Without units, chunks go to
+  // the threads in contiguous blocks as the integration's parcels do, so a thread integrates
+  // the forces it wrote, in its own core's cache: on the reference layer 1.07x on 2 threads
+  // against dynamic chunks, and the quickstart as fast, although its contacts cluster at the
+  // disturbed end of the x-ordered parcels.
   if constexpr (sizeof...(Units) == 0) {
     constexpr std::size_t chunk = kContactChunk;
     const std::size_t chunks = (n + chunk - 1) / chunk;
     // Sized once for all parcels (the stepped ones are a prefix of them): no allocation per step.
     if (chunk_touching_.size() < (size() + chunk - 1) / chunk)
       chunk_touching_.resize((size() + chunk - 1) / chunk, 0);
-#pragma omp parallel for schedule(dynamic, 1) firstprivate(k) if (n >= kParallelMinimum)
+#pragma omp parallel for schedule(static) firstprivate(k) if (n >= kParallelMinimum)
     for (std::size_t c = 0; c < chunks; ++c) {
       const std::size_t i0 = c * chunk, i1 = std::min(n, (c + 1) * chunk);
       // Where few listed pairs touched in the last pass (a loose layer, a cloud) slot by slot
