@@ -108,13 +108,12 @@ class BandForceObserver final : public SeriesObserver {
     if (!view.grid || !view.primitives.p)
       throw std::invalid_argument("BandForceObserver: the state view has no pressure field");
     const Grid2D& grid = *view.grid;
-    interior_values(grid, *view.primitives.p, pressure_);
     if (x_centers_.empty()) {
       x_centers_ = interior_centers(grid.x());
       y_centers_ = interior_centers(grid.y());
     }
     const double shock_x =
-        shock_position(x_centers_, y_centers_, pressure_, options_.shock.p_ambient,
+        shock_position(grid, *view.primitives.p, x_centers_, y_centers_, options_.shock.p_ambient,
                        options_.shock.threshold, options_.shock.y_min);
     BandParcelsView parcels = parcels_of_(view);
     trajectory_.record(view.time, shock_x, max_shock_advance(grid.x()));
@@ -140,7 +139,7 @@ class BandForceObserver final : public SeriesObserver {
   BandParcelsOf parcels_of_;
   BandForceSeries series_;
   ShockTrajectory trajectory_;
-  std::vector<double> arrival_, pressure_, x_centers_, y_centers_;
+  std::vector<double> arrival_, x_centers_, y_centers_;
 };
 
 }  // namespace

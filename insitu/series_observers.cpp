@@ -94,19 +94,18 @@ class ShockPositionObserver final : public SeriesObserver {
     require_grid(view, view.primitives.p, "ShockPositionObserver");
     if (sampled_at(view.time)) return;
     const Grid2D& grid = *view.grid;
-    interior_values(grid, *view.primitives.p, pressure_);
     if (x_centers_.empty()) {
       x_centers_ = interior_centers(grid.x());
       y_centers_ = interior_centers(grid.y());
     }
-    const double x = shock_position(x_centers_, y_centers_, pressure_, options_.p_ambient,
-                                    options_.threshold, options_.y_min);
+    const double x = shock_position(grid, *view.primitives.p, x_centers_, y_centers_,
+                                    options_.p_ambient, options_.threshold, options_.y_min);
     table_.append_row(std::vector{view.time, x});
     mark_sampled(view.time);
   }
   ShockPositionOptions options_;
   SeriesTable table_;
-  std::vector<double> pressure_, x_centers_, y_centers_;
+  std::vector<double> x_centers_, y_centers_;
 };
 
 }  // namespace

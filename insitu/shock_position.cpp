@@ -26,19 +26,47 @@ double shock_position_on_row(std::span<const double> x_centers, std::span<const 
   return nan;
 }
 
+namespace {
+
+/// The furthest row's shock over the rows at or above y_min; row_of(j) gives row j's pressures.
+template <class RowOf>
+double furthest_row_shock(std::span<const double> x_centers, std::span<const double> y_centers,
+                          RowOf row_of, double p_ambient, double threshold, double y_min) {
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t j = 0; j < y_centers.size(); ++j) {
+    if (y_centers[j] < y_min) continue;
+    const double x = shock_position_on_row(x_centers, row_of(j), p_ambient, threshold);
+    if (!std::isnan(x) && (std::isnan(best) || x > best)) best = x;
+  }
+  return best;
+}
+
+}  // namespace
+
 double shock_position(std::span<const double> x_centers, std::span<const double> y_centers,
                       std::span<const double> pressure, double p_ambient, double threshold,
                       double y_min) {
   const std::size_t nx = x_centers.size(), ny = y_centers.size();
   if (pressure.size() != nx * ny) throw std::invalid_argument("shock_position: size mismatch");
-  double best = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t j = 0; j < ny; ++j) {
-    if (y_centers[j] < y_min) continue;
-    const double x =
-        shock_position_on_row(x_centers, pressure.subspan(j * nx, nx), p_ambient, threshold);
-    if (!std::isnan(x) && (std::isnan(best) || x > best)) best = x;
-  }
-  return best;
+  return furthest_row_shock(
+      x_centers, y_centers, [&](std::size_t j) { return pressure.subspan(j * nx, nx); }, p_ambient,
+      threshold, y_min);
+}
+
+double shock_position(const Grid2D& grid, const Field2D& pressure,
+                      std::span<const double> x_centers, std::span<const double> y_centers,
+                      double p_ambient, double threshold, double y_min) {
+  const std::size_t nx = x_centers.size();
+  if (nx != static_cast<std::size_t>(grid.nx()) ||
+      y_centers.size() != static_cast<std::size_t>(grid.ny()) ||
+      pressure.size() != grid.size_with_ghosts())
+    throw std::invalid_argument("shock_position: the field or the centres do not fit the grid");
+  return furthest_row_shock(
+      x_centers, y_centers,
+      [&](std::size_t j) {
+        return std::span<const double>(pressure.data() + grid.index(0, static_cast<int>(j)), nx);
+      },
+      p_ambient, threshold, y_min);
 }
 
 }  // namespace dustlift

@@ -4,6 +4,9 @@
 // centre and the next one downstream (a shock moving towards +x into gas at rest).
 #include <span>
 
+#include "solver/core/field.hpp"
+#include "solver/core/grid.hpp"
+
 namespace dustlift {
 
 /// On one row: x_centers (n) and p (n). `p_ambient` <= 0 takes the row's last
@@ -17,5 +20,12 @@ double shock_position_on_row(std::span<const double> x_centers, std::span<const 
 double shock_position(std::span<const double> x_centers, std::span<const double> y_centers,
                       std::span<const double> pressure, double p_ambient, double threshold,
                       double y_min);
+
+/// The same, read in place from a cell field with ghosts on `grid` (whose interior centres
+/// x_centers and y_centers are): the observers that follow the shock every step then copy
+/// no field.
+double shock_position(const Grid2D& grid, const Field2D& pressure,
+                      std::span<const double> x_centers, std::span<const double> y_centers,
+                      double p_ambient, double threshold, double y_min);
 
 }  // namespace dustlift

@@ -1,10 +1,16 @@
-// Shock position filter: a synthetic step and the exact Sod solution sampled on a grid.
+// Shock position filter: a synthetic step, the exact Sod solution sampled on a grid, and the
+// rows read in place from a field with ghosts.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "insitu/shock_position.hpp"
+#include "insitu/view_fields.hpp"
+#include "solver/core/derivatives.hpp"
+#include "solver/core/field.hpp"
+#include "solver/core/grid.hpp"
 
 namespace dustlift {
 namespace {
@@ -113,6 +119,33 @@ TEST(ShockPosition, AShockThatLeftTheDomainIsNotReportedAtTheLastCell) {
   EXPECT_DOUBLE_EQ(shock_position_on_row(xc, std::vector<double>{3, 3, 3, 1}, 1.0, 0.05), 2.5 + 0.975);
   EXPECT_TRUE(std::isnan(shock_position_on_row(xc, std::vector<double>{3, 3, 3, 3}, 1.0, 0.05)));
   EXPECT_TRUE(std::isnan(shock_position(xc, std::vector<double>{0.5}, std::vector<double>{3, 3, 3, 3}, 1.0, 0.05, 0.0)));
+}
+
+TEST(ShockPosition, ReadInPlaceFromAFieldWithGhostsAsFromItsInteriorCopy) {
+  // The rows the every-step observers read in place: the same positions as from the interior
+  // copy, and the ghosts (raised everywhere, so a row read with them would end raised and
+  // report nothing) never read.
+  const Grid2D grid(Axis({0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, 2), Axis({0.0, 1.0, 2.0, 3.0}, 2));
+  Field2D p(grid, 9.0);
+  const double rows[3][5] = {{3, 3, 1, 1, 1}, {3, 3, 3, 2, 1}, {3, 1, 1, 1, 1}};
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 5; ++i) p(i, j) = rows[j][i];
+  std::vector<double> copy;
+  interior_values(grid, p, copy);
+  const std::vector<double> xc = interior_centers(grid.x()), yc = interior_centers(grid.y());
+  for (double y_min : {0.0, 1.0, 2.0, 5.0}) {
+    const double from_copy = shock_position(xc, yc, copy, 1.0, 0.05, y_min);
+    const double in_place = shock_position(grid, p, xc, yc, 1.0, 0.05, y_min);
+    if (std::isnan(from_copy)) {
+      EXPECT_TRUE(std::isnan(in_place)) << y_min;
+    } else {
+      EXPECT_EQ(in_place, from_copy) << y_min;
+    }
+  }
+  // Row 1 leads: raised to centre 3.5, 2 there and 1 at 4.5 (level 1.05).
+  EXPECT_DOUBLE_EQ(shock_position(grid, p, xc, yc, 1.0, 0.05, 0.0), 3.5 + 0.95 / 1.0);
+  EXPECT_DOUBLE_EQ(shock_position(grid, p, xc, yc, 1.0, 0.05, 2.0), 0.5 + 1.95 / 2.0);
+  EXPECT_THROW(shock_position(grid, p, yc, yc, 1.0, 0.05, 0.0), std::invalid_argument);
 }
 
 }  // namespace
