@@ -107,6 +107,13 @@ struct GasSolver::Impl {
   double geo(const std::vector<double>& v, int i) const {
     return v[static_cast<std::size_t>(i + ng)];
   }
+  /// The smallest min(dx^2, dy^2) of any interior cell (a bound of the viscous limit).
+  double smallest_h2() const {
+    double largest_inverse = 0.0;
+    for (int i = 0; i < nx; ++i) largest_inverse = std::max(largest_inverse, geo(inv_dx, i));
+    for (int j = 0; j < ny; ++j) largest_inverse = std::max(largest_inverse, geo(inv_dy, j));
+    return 1.0 / (largest_inverse * largest_inverse);
+  }
 
   // The state (gas_solver.cpp).
   template <class Th>

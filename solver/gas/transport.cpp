@@ -1,6 +1,8 @@
 #include "solver/gas/transport.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "solver/gas/thermo.hpp"
 
@@ -72,7 +74,9 @@ TransportProperties air_transport_gordon_wilke(double T) {
   }();
   const bool low = T < kFitRangeBreak;
   const double ln_t = std::log(T), inv = 1.0 / T;
-  auto fit = [&](const GordonFit& f) { return std::exp(f.A * ln_t + inv * (f.B + f.C * inv) + f.D); };
+  auto fit = [&](const GordonFit& f) {
+    return std::exp(f.A * ln_t + inv * (f.B + f.C * inv) + f.D);
+  };
   const double mu1 = kMicropoiseToPaS * fit(low ? kO2ViscosityLow : kO2ViscosityHigh);
   const double mu2 = kMicropoiseToPaS * fit(low ? kN2ViscosityLow : kN2ViscosityHigh);
   const double k1 = kMicroWattPerCmKToSI * fit(low ? kO2ConductivityLow : kO2ConductivityHigh);
@@ -86,12 +90,33 @@ TransportProperties air_transport_gordon_wilke(double T) {
 }
 
 GordonWilkeAirTable::GordonWilkeAirTable()
-    : count_(static_cast<std::size_t>((kTmax - kTmin) * kInvStep) + 1), mu_(count_), lambda_(count_) {
+    : count_(static_cast<std::size_t>((kTmax - kTmin) * kInvStep) + 1),
+      mu_(count_),
+      lambda_(count_) {
   for (std::size_t k = 0; k < count_; ++k) {
-    const TransportProperties p = air_transport_gordon_wilke(kTmin + static_cast<double>(k) / kInvStep);
+    const TransportProperties p =
+        air_transport_gordon_wilke(kTmin + static_cast<double>(k) / kInvStep);
     mu_[k] = p.mu;
     lambda_[k] = p.lambda;
   }
+}
+
+TransportProperties GordonWilkeAirTable::largest_over(double t_lo, double t_hi) const {
+  const double x_lo = (t_lo - kTmin) * kInvStep, x_hi = (t_hi - kTmin) * kInvStep;
+  const double last = static_cast<double>(count_ - 1);
+  if (!(x_lo >= 0.0 && x_hi < last && x_lo <= x_hi)) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf};
+  }
+  TransportProperties most = (*this)(t_lo);
+  const TransportProperties end = (*this)(t_hi);
+  most.mu = std::max(most.mu, end.mu);
+  most.lambda = std::max(most.lambda, end.lambda);
+  for (auto k = static_cast<std::size_t>(std::ceil(x_lo)); static_cast<double>(k) <= x_hi; ++k) {
+    most.mu = std::max(most.mu, mu_[k]);
+    most.lambda = std::max(most.lambda, lambda_[k]);
+  }
+  return most;
 }
 
 double sutherland_viscosity(double T, const TransportConfig& c) {

@@ -56,6 +56,10 @@ class GordonWilkeAirTable {
   /// The same for n temperatures (a row of cells): mu[i], lambda[i] of T[i] (transport_rows.cpp,
   /// vectorised; values identical to operator()).
   void apply(const double* T, double* mu, double* lambda, int n) const;
+  /// The largest mu and the largest lambda operator() gives for any T in [t_lo, t_hi] (the
+  /// interpolation is linear between nodes, so they are at nodes or at the ends); infinite
+  /// when the interval leaves the table.
+  TransportProperties largest_over(double t_lo, double t_hi) const;
 
  private:
   static constexpr double kTmin = 20.0, kTmax = 6000.0, kInvStep = 1.0;  // 1 K spacing

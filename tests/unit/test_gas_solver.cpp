@@ -4,7 +4,10 @@
 // message naming the cell and variable.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +15,8 @@
 #include "solver/core/errors.hpp"
 #include "solver/gas/gas_solver.hpp"
 #include "solver/gas/shock_relations.hpp"
+#include "solver/gas/time_step_rows.hpp"
+#include "solver/gas/transport.hpp"
 #include "solver/gas/thermo.hpp"
 
 using namespace dustlift;
@@ -72,6 +77,80 @@ TEST(GasSolverDt, ViscousLimit) {
   gas.initialize(ic);
   const double h = 1e-3;  // smallest cell (uniform x core; y cells are 2 mm)
   EXPECT_NEAR(gas.stable_dt(), 0.25 * h * h * 1.2 / (10.0 * 1.4 / 0.5), 1e-9);
+}
+
+TEST(GasSolverDt, TableViscousLimitIsTakenWhereItBinds) {
+  // Air at 300 K and 1e-3 kg/m^3 on 1 um cells: nu = 0.018 m^2/s, so the viscous limit
+  // (1e-11 s) is far below the convective one (7e-10 s) and must be computed, not bounded.
+  AxisSpec x, y;
+  x.start = 0.0;
+  x.end = 2e-5;
+  x.cells = 20;
+  y.start = 0.0;
+  y.end = 1e-5;
+  y.cells = 10;
+  const Grid2D grid(x, y, 2);
+  GasConfig cfg;  // thermally perfect air, Gordon-Wilke
+  GasSolver gas(grid, cfg);
+  const double T = 300.0, rho = 1e-3;
+  InitialCondition ic;
+  ic.state = {rho, 0.0, 0.0, rho * cfg.thermo.gas_constant * T};
+  gas.initialize(ic);
+  const ThermallyPerfectAir air(cfg.thermo.gas_constant);
+  const TransportProperties tp = GordonWilkeAirTable()(T);
+  const double h = 1e-6;
+  const double cv = air.cp(T) - cfg.thermo.gas_constant;
+  const double expected = 0.25 * h * h * rho / std::max(tp.mu, tp.lambda / cv);
+  EXPECT_NEAR(gas.stable_dt(), expected, 1e-6 * expected);
+  EXPECT_LT(expected, 0.1 * cfg.scheme.cfl * h / std::sqrt(air.sound_speed_squared(T)));
+}
+
+TEST(GasSolverDt, ViscousBoundIsBelowEveryCellsLimit) {
+  // Rows of hot and cold, dense and thin gas on stretched cells: the bound the step uses to
+  // leave out the viscous pass never exceeds the smallest limit that pass would find.
+  const ThermallyPerfectAir air(287.0);
+  const GordonWilkeAirTable table;
+  const int n = 400;
+  std::vector<double> u(n, 0.0), v(n, 0.0), T(n), rho(n), inv_dx(n), mu(n), lambda(n);
+  std::uint64_t seed = 11;
+  auto uniform = [&seed] {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  for (int trial = 0; trial < 20; ++trial) {
+    const double t_lo = 200.0 + 2000.0 * uniform(), t_span = 3000.0 * uniform();
+    for (int i = 0; i < n; ++i) {
+      T[i] = t_lo + t_span * uniform();
+      rho[i] = 0.01 + 5.0 * uniform();
+      inv_dx[i] = 1.0 / (1e-6 + 1e-3 * uniform());
+    }
+    const double inv_dy = 1.0 / (1e-6 + 1e-3 * uniform());
+    const TimeStepRow row{u.data(), v.data(), T.data(), rho.data(), inv_dx.data(), inv_dy,
+                          n,        mu.data(), lambda.data()};
+    double rate = 0.0, smallest = std::numeric_limits<double>::infinity();
+    GasExtremes seen{smallest, -smallest, smallest};
+    convective_rate_row(air, row, rate, seen);
+    viscous_dt_row(air, table, row, smallest);
+    double largest_inverse = inv_dy;
+    for (double g : inv_dx) largest_inverse = std::max(largest_inverse, g);
+    const double bound =
+        viscous_dt_lower_bound(air, table, seen, 1.0 / (largest_inverse * largest_inverse));
+    EXPECT_GT(bound, 0.0) << trial;
+    EXPECT_LE(bound, smallest) << trial;
+  }
+  // On uniform gas and cells the bound is the limit itself, halved (its margin).
+  std::fill(T.begin(), T.end(), 612.3);
+  std::fill(rho.begin(), rho.end(), 0.8);
+  std::fill(inv_dx.begin(), inv_dx.end(), 4000.0);
+  const TimeStepRow row{u.data(), v.data(), T.data(), rho.data(), inv_dx.data(), 2000.0,
+                        n,        mu.data(), lambda.data()};
+  double rate = 0.0, smallest = std::numeric_limits<double>::infinity();
+  GasExtremes seen{smallest, -smallest, smallest};
+  convective_rate_row(air, row, rate, seen);
+  viscous_dt_row(air, table, row, smallest);
+  const double bound = viscous_dt_lower_bound(air, table, seen, 1.0 / (4000.0 * 4000.0));
+  EXPECT_LE(bound, 0.5 * smallest);
+  EXPECT_GT(bound, 0.499 * smallest);
 }
 
 TEST(GasSolverBoundaries, GhostCellsOfEachKind) {
