@@ -11,7 +11,6 @@
 #include "insitu/provenance_of.hpp"
 #include "insitu/series_observer.hpp"
 #include "insitu/shock_position.hpp"
-#include "insitu/view_fields.hpp"
 #include "insitu/vtk_files_observer.hpp"
 #include "solver/core/communicator.hpp"
 #include "solver/core/derivatives.hpp"

@@ -69,15 +69,34 @@ struct ContactKernel {
       fx_out[i] = fy_out[i] = tq_out[i] = 0.0;
       return;
     }
-    ContactParcel p{i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
+    ContactParcel p = state_of(i);
     for (std::int32_t k = off[i]; k < off[i + 1]; ++k) pair(p, k);
-    const unsigned mask = wmask[i];
+    add_walls(p, wmask[i]);
+    store(p);
+  }
+
+  /// Parcel i's state, its force sums zero.
+  [[gnu::always_inline]] inline ContactParcel state_of(std::size_t i) const {
+    return {i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
+  }
+  /// Parcel i's state with the force sums stored so far in this pass.
+  [[gnu::always_inline]] inline ContactParcel stored_state_of(std::size_t i) const {
+    ContactParcel p = state_of(i);
+    p.fx = fx_out[i];
+    p.fy = fy_out[i];
+    p.tq = tq_out[i];
+    return p;
+  }
+  [[gnu::always_inline]] inline void store(const ContactParcel& p) const {
+    fx_out[p.i] = p.fx;
+    fy_out[p.i] = p.fy;
+    tq_out[p.i] = p.tq;
+  }
+  /// The walls in the parcel's reach (`mask`, from the last rebuild).
+  [[gnu::always_inline]] inline void add_walls(ContactParcel& p, unsigned mask) const {
     for (int w = 0; w < n_walls && mask != 0; ++w) {
       if ((mask & (1u << walls[w].slot)) != 0) wall(p, walls[w]);
     }
-    fx_out[i] = p.fx;
-    fy_out[i] = p.fy;
-    tq_out[i] = p.tq;
   }
 
   /// Whether parcel i has a contact force (touches a partner or a wall).
@@ -191,33 +210,21 @@ struct ContactKernel {
       // pairs gave (the same operations as parcel()'s, fused multiply-adds included).
       for (std::int32_t t = 0; t < n_touching;) {
         const auto i = static_cast<std::size_t>(owners[touching[t] - s0]);
-        ContactParcel p{i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
-        p.fx = fx_out[i];
-        p.fy = fy_out[i];
-        p.tq = tq_out[i];
+        ContactParcel p = stored_state_of(i);
         for (; t < n_touching && static_cast<std::size_t>(owners[touching[t] - s0]) == i; ++t) {
           const std::int32_t k = touching[t], j = nj[k];
           const Separation sep = separation(p.x, p.y, p.r, j, k);
           touching_pair(p, k, j, sep.dx, sep.dy, sep.d2, sep.rs);
         }
-        fx_out[i] = p.fx;
-        fy_out[i] = p.fy;
-        tq_out[i] = p.tq;
+        store(p);
       }
     }
     for (std::size_t i = i0; i < i1; ++i) {
       const unsigned mask = wmask[i];
       if (mask == 0 || (copy != nullptr && copy[i] != 0)) continue;
-      ContactParcel p{i, px[i], py[i], pvx[i], pvy[i], pr[i], pr[i] * pw[i]};
-      p.fx = fx_out[i];
-      p.fy = fy_out[i];
-      p.tq = tq_out[i];
-      for (int w = 0; w < n_walls; ++w) {
-        if ((mask & (1u << walls[w].slot)) != 0) wall(p, walls[w]);
-      }
-      fx_out[i] = p.fx;
-      fy_out[i] = p.fy;
-      tq_out[i] = p.tq;
+      ContactParcel p = stored_state_of(i);
+      add_walls(p, mask);
+      store(p);
     }
     return touching_pairs;
   }
