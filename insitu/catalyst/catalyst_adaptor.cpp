@@ -9,6 +9,10 @@
 #include "insitu/catalyst_adaptor.hpp"
 
 #include <fmt/format.h>
+#ifdef DUSTLIFT_CATALYST_WITH_MPI
+#include <mpi.h>
+#include <vtkMPI.h>  // vtkMPICommunicatorOpaqueComm
+#endif
 #include <vtkCPDataDescription.h>
 #include <vtkCPInputDataDescription.h>
 #include <vtkCPProcessor.h>
@@ -96,7 +100,7 @@ class CatalystAdaptor final : public CatalystPipelines {
     // every message of the catalyst package.
     window_->set_log(settings_.log);
     vtkOutputWindow::SetInstance(window_);
-    processor_->Initialize(settings_.output_dir.c_str());
+    initialize_processor();
     vtkOutputWindow::SetInstance(window_);  // ParaView's initialisation installs its own
     if (display_)
       log(fmt::format("catalyst: no DISPLAY: renders go to a private Xvfb on {} (Mesa llvmpipe)",
@@ -125,6 +129,24 @@ class CatalystAdaptor final : public CatalystPipelines {
 
   ~CatalystAdaptor() override { finalize(); }
 
+ private:
+  /// Under mpirun the pipelines run on rank 0 alone, on the state gathered there: ParaView is
+  /// set up on that rank's own communicator, since on MPI_COMM_WORLD its set-up is a collective
+  /// the other ranks, busy with the run, never join (the run hung there).
+  void initialize_processor() {
+#ifdef DUSTLIFT_CATALYST_WITH_MPI
+    int mpi_started = 0;
+    MPI_Initialized(&mpi_started);
+    if (mpi_started != 0) {
+      vtkMPICommunicatorOpaqueComm own(&own_communicator_);
+      processor_->Initialize(own, settings_.output_dir.c_str());
+      return;
+    }
+#endif
+    processor_->Initialize(settings_.output_dir.c_str());
+  }
+
+ public:
   bool wants(double time, long long step, bool last) override {
     if (finalized_) return false;
     description_->ResetAll();
@@ -188,6 +210,9 @@ class CatalystAdaptor final : public CatalystPipelines {
   CatalystSettings settings_;
   std::optional<VirtualDisplay> display_;  // before the processor: it must outlive rendering
   vtkNew<LogWindow> window_;
+#ifdef DUSTLIFT_CATALYST_WITH_MPI
+  MPI_Comm own_communicator_ = MPI_COMM_SELF;
+#endif
   vtkNew<vtkCPProcessor> processor_;
   vtkNew<vtkCPDataDescription> description_;
   vtkSmartPointer<vtkRectilinearGrid> grid_;
