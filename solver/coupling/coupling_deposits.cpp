@@ -102,6 +102,9 @@ void GasParticleCoupling::deposit_exchange(GasSolver& gas, const ParcelSystem& p
       se(i, j) = -e.energy;
     }
   }
+  // Rows from `rows` on and columns from `nx` on hold no source now (see above): the gas step
+  // need not look there.
+  gas.sources_zero_beyond(rows, nx);
   gas.change_porosity(alpha_g_, 0, cleared_to_);
 }
 

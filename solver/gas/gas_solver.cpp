@@ -54,6 +54,8 @@ GasSolver::Impl::Impl(const Grid2D& g, const GasConfig& c)
   rest_to.assign(static_cast<std::size_t>(ny + 2 * ng), -ng - 1);
   rest_from.assign(static_cast<std::size_t>(ny + 2 * ng), nx + ng);
   source_rows.assign(static_cast<std::size_t>(ny), SourceExtent{});
+  source_row_bound = ny;
+  source_column_bound = nx;
   saved_lo.assign(static_cast<std::size_t>(ny), 0);
   widened_lo_.assign(static_cast<std::size_t>(ny), 0);
   widened_hi_.assign(static_cast<std::size_t>(ny), 0);
@@ -222,7 +224,24 @@ long long GasSolver::cell_updates() const {
 }
 
 Field2D& GasSolver::source(int k) {
+  // Whoever writes through the reference may write anywhere.
+  impl_->source_row_bound = impl_->ny;
+  impl_->source_column_bound = impl_->nx;
   return impl_->source[static_cast<std::size_t>(k)];
+}
+
+const Field2D& GasSolver::source(int k) const {
+  return impl_->source[static_cast<std::size_t>(k)];
+}
+
+void GasSolver::sources_zero_beyond(int rows, int columns) {
+  Impl& m = *impl_;
+  m.source_row_bound = std::clamp(rows, 0, m.ny);
+  m.source_column_bound = std::clamp(columns, 0, m.nx);
+}
+
+SourceBounds GasSolver::source_bounds() const {
+  return {impl_->source_row_bound, impl_->source_column_bound};
 }
 
 Field2D& GasSolver::primitive_field(int k) {

@@ -62,6 +62,11 @@ struct GasTotals {
   double mass = 0, momentum_x = 0, momentum_y = 0, energy = 0;
 };
 
+/// Interior rows [0, rows) and columns [0, columns) outside which a gas's sources are zero.
+struct SourceBounds {
+  int rows = 0, columns = 0;
+};
+
 class GasSolver {
  public:
   GasSolver(const Grid2D& grid, const GasConfig& config);
@@ -139,6 +144,14 @@ class GasSolver {
   /// External volumetric sources added to d(conserved(k))/dt (per m^3, e.g. -f_p, -s_p - q_p
   /// of eqs. 2-3); zero by default, held constant over one step(). k as in conserved().
   Field2D& source(int k);
+  const Field2D& source(int k) const;
+  /// The writer of the sources vouches that after its writes they are zero outside interior
+  /// rows [0, rows) and columns [0, columns): a step then looks for them only there (a search
+  /// of the whole grid every step read four fields mostly of zeros). Holds until source() is
+  /// next called.
+  void sources_zero_beyond(int rows, int columns);
+  /// Rows and columns the step searches for sources (the whole grid unless vouched otherwise).
+  SourceBounds source_bounds() const;
 
   /// Checkpoint restore only: primitive field k (a Primitive component: rho, u, v, p, T),
   /// ghosts included.

@@ -70,7 +70,11 @@ struct GasSolver::Impl {
   std::vector<int> rest_to, rest_from;
   RestReference left_reference, right_reference;
   std::vector<SourceExtent> source_rows;  ///< per interior row (whole columns), once per step
-  std::vector<double> agreed_;            ///< scratch of agree_rest_rows
+  /// The sources are zero outside interior rows [0, source_row_bound) and columns
+  /// [0, source_column_bound): the whole grid until their writer says less
+  /// (GasSolver::sources_zero_beyond), and again whenever source() hands them out.
+  int source_row_bound = 0, source_column_bound = 0;
+  std::vector<double> agreed_;  ///< scratch of agree_rest_rows
   /// Per interior row, the cells whose step-start state is saved in U0 this step (a hull of
   /// the ranges updated so far; a cell enters it before its first update of the step).
   std::vector<int> saved_lo, saved_hi;

@@ -56,13 +56,15 @@ void GasSolver::Impl::compute_active_ranges() {
 void GasSolver::Impl::find_source_rows() {
   if (!skip_resting) return;
   const int first = rest_agreement.first_column;
+  // Only where the sources' writer said they may be non-zero (the whole grid unless it did).
+  const int rows_with = source_row_bound, columns_with = source_column_bound;
 #pragma omp parallel for if (threaded) schedule(static)
   for (int j = 0; j < ny; ++j) {
     const std::size_t c = at(0, j);
     const double* const rows[Conserved::kCount] = {
         source[Conserved::kMass].data() + c, source[Conserved::kMomentumX].data() + c,
         source[Conserved::kMomentumY].data() + c, source[Conserved::kEnergy].data() + c};
-    SourceExtent e = source_extent(rows, nx);
+    SourceExtent e = j < rows_with ? source_extent(rows, columns_with) : SourceExtent{};
     e = e.last >= 0 ? SourceExtent{e.first + first, e.last + first}
                     : SourceExtent{rest_agreement.whole_columns, -1};
     source_rows[static_cast<std::size_t>(j)] = e;
