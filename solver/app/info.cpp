@@ -8,6 +8,7 @@
 
 #include "insitu/outputs.hpp"
 #include "solver/app/cost_estimate.hpp"
+#include "solver/app/layout_advice.hpp"
 #include "solver/app/run_scene.hpp"
 #include "solver/dem/layer_generator.hpp"
 #include "solver/dem/parcel_system.hpp"
@@ -120,6 +121,10 @@ void print_info(const Scene& scene, const Simulation& sim, CostEstimate cost) {
                  ? "MPI: mpirun -np N dustlift run SCENE runs x-slabs of this grid, each rank with "
                    "the parcels in its slab"
                  : "MPI: mpirun -np N dustlift run SCENE runs x-slabs of this grid");
+  const LayoutAdvice layout =
+      recommend_layout({omp_get_max_threads(), built_with_mpi(), parcels != nullptr && periodic});
+  fmt::print("layout: {} rank x {} thread{} (`{}`): {}\n", layout.ranks, layout.threads,
+             layout.threads == 1 ? "" : "s", layout.command, layout.reason);
   const double dt0 = sim.gas().stable_dt();
   const double steps = estimated_steps(sim);
   fmt::print(
