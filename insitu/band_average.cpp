@@ -49,7 +49,11 @@ void band_arrival_times(const ShockTrajectory& trajectory, const std::vector<Ban
   if (initial_x.size() != arrival_time.size() || initial_y.size() != arrival_time.size())
     throw std::invalid_argument("band_arrival_times: size mismatch");
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t k = 0; k < initial_x.size(); ++k) {
+  // Every step over every parcel, each on its own: in parallel.
+  const auto n = static_cast<std::ptrdiff_t>(initial_x.size());
+#pragma omp parallel for schedule(static) if (n >= 8192)
+  for (std::ptrdiff_t q = 0; q < n; ++q) {
+    const auto k = static_cast<std::size_t>(q);
     bool in_band = false;
     for (const Band& b : bands) in_band = in_band || b.contains(initial_x[k], initial_y[k]);
     arrival_time[k] = in_band ? trajectory.arrival_time(initial_x[k]) : nan;
