@@ -53,6 +53,8 @@ GasSolver::Impl::Impl(const Grid2D& g, const GasConfig& c)
   whole_hi.assign(static_cast<std::size_t>(ny), nx);
   rest_to.assign(static_cast<std::size_t>(ny + 2 * ng), -ng - 1);
   rest_from.assign(static_cast<std::size_t>(ny + 2 * ng), nx + ng);
+  suffix_cache.suffix.assign(static_cast<std::size_t>(ny + 2 * ng), 0);
+  suffix_cache.dirty_to.assign(static_cast<std::size_t>(ny + 2 * ng), nx + 2 * ng);
   source_rows.assign(static_cast<std::size_t>(ny), SourceExtent{});
   source_row_bound = ny;
   source_column_bound = nx;
@@ -133,6 +135,7 @@ void GasSolver::Impl::initialize(const Th& th, const InitialCondition& ic) {
 
 template <class Th>
 void GasSolver::Impl::refresh(const Th& th) {
+  suffix_cache.valid = false;
   fill_porosity_ghosts();
 #pragma omp parallel if (threaded)
   {
@@ -202,7 +205,7 @@ double GasSolver::sound_speed(int i, int j) const {
 }
 
 Field2D& GasSolver::conserved(int k) {
-  impl_->externally_modified = true;
+  impl_->state_written();
   return impl_->U[static_cast<std::size_t>(k)];
 }
 
@@ -215,7 +218,7 @@ void GasSolver::refresh_primitives() {
 }
 
 Field2D& GasSolver::porosity() {
-  impl_->externally_modified = true;
+  impl_->state_written();
   return impl_->alpha;
 }
 
@@ -246,7 +249,7 @@ SourceBounds GasSolver::source_bounds() const {
 
 Field2D& GasSolver::primitive_field(int k) {
   Impl& m = *impl_;
-  m.externally_modified = true;
+  m.state_written();
   Field2D* fields[Primitive::kCount] = {&m.rho, &m.u, &m.v, &m.p, &m.T};
   if (k < 0 || k >= Primitive::kCount)
     throw std::out_of_range("GasSolver::primitive_field: k must be 0..4");

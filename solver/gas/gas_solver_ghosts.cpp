@@ -94,12 +94,12 @@ void GasSolver::set_ghost_filler(GridSide side, GhostFiller* filler) {
   Impl& m = *impl_;
   m.replaced[side_index(side)] = filler;
   m.resolve_fillers();
-  m.externally_modified = true;
+  m.state_written();
 }
 
 void GasSolver::set_fault_reporting(FaultReporting reporting) {
   impl_->fault_reporting = std::move(reporting);
-  impl_->externally_modified = true;
+  impl_->state_written();
 }
 
 }  // namespace dustlift

@@ -94,6 +94,34 @@ struct GasSolver::Impl {
   /// The state was written from outside (initialize, a checkpoint, a test): check it before
   /// the next step. The solver's own updates check every cell they change.
   bool externally_modified = true;
+  /// Per row (ghost rows included, index j + ng) the trailing cells that rested at
+  /// `reference` when last scanned, and the cells [0, dirty_to) of the row (counted from its
+  /// first ghost) that may have changed since: a scan of a row whose resting cells did not
+  /// change reads only its ghosts and the cells that did, not the resting gas again, which
+  /// every step read twice (the stage's ranges, the coupling's resting parcels) over most of
+  /// the grid. Any write from outside makes it invalid (every row scanned whole).
+  struct RestSuffixCache {
+    bool valid = false;
+    RestReference reference;
+    std::vector<int> suffix, dirty_to;
+  };
+  mutable RestSuffixCache suffix_cache;
+  /// The state was written from outside the step (see externally_modified).
+  void state_written() {
+    externally_modified = true;
+    suffix_cache.valid = false;
+  }
+  /// Cells [0, end) of interior row j (this grid's columns) may have changed.
+  void cells_changed(int j, int end) {
+    int& d = suffix_cache.dirty_to[static_cast<std::size_t>(j + ng)];
+    d = std::max(d, end + ng);
+  }
+  /// Before the rows' resting_suffix_of calls (outside their parallel loop): a reference other
+  /// than the cached one voids every row's counts.
+  void begin_suffix_scans(const RestReference& ref) const;
+  /// Trailing cells of row jr (ghost rows included) resting at the reference passed to
+  /// begin_suffix_scans; the same count resting_suffix(row, ref) gives.
+  int resting_suffix_of(int jr, const RowView& row, const RestReference& ref) const;
   /// Per GridSide: this grid's boundary condition, the filler set in its place
   /// (set_ghost_filler; null: none) and the one used. Local fillers run in the parallel
   /// regions; the collective ones (distinct, in side order, null after the last) after them.

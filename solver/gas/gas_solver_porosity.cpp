@@ -40,6 +40,7 @@ void GasSolver::Impl::change_porosity(const Th& th, const Field2D& alpha_new, in
         last = i;
       }
       if (last < first) continue;
+      cells_changed(j, last + 1);
       StageScratch shifted = sc;
       shifted.changed = sc.changed + first;
       const int bad = primitives_row(th, primitive_row(j, first, last + 1), shifted);

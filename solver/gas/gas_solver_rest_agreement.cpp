@@ -71,7 +71,7 @@ void GasSolver::set_rest_agreement(RestAgreement agreement) {
   if (!agreement.min_each || !(m.config.rest_tolerance > 0.0) || !m.skip_resting)
     agreement = {0, m.nx, {}};  // the grid's own columns, no collective
   m.rest_agreement = std::move(agreement);
-  m.externally_modified = true;
+  m.state_written();
 }
 
 }  // namespace dustlift

@@ -8,14 +8,69 @@ namespace dustlift {
 /// state, in the whole grid's columns. Every thread of a parallel region calls it.
 void GasSolver::Impl::scan_rest_rows() {
   const int cells = nx + 2 * ng, first = rest_agreement.first_column;
+#pragma omp single
+  begin_suffix_scans(right_reference);
 #pragma omp for schedule(static)
   for (int jr = -ng; jr < ny + ng; ++jr) {
     const std::size_t c = at(-ng, jr);
     const RowView row{u.data() + c, v.data() + c, p.data() + c, T.data() + c, cells};
     const auto k = static_cast<std::size_t>(jr + ng);
     rest_to[k] = first + resting_prefix(row, left_reference) - 1 - ng;
-    rest_from[k] = first + cells - resting_suffix(row, right_reference) - ng;
+    rest_from[k] = first + cells - resting_suffix_of(jr, row, right_reference) - ng;
   }
+}
+
+namespace {
+bool same_reference(const RestReference& a, const RestReference& b) {
+  return a.valid == b.valid && a.p == b.p && a.T == b.T && a.du == b.du && a.dp == b.dp &&
+         a.dT == b.dT;
+}
+}  // namespace
+
+void GasSolver::Impl::begin_suffix_scans(const RestReference& ref) const {
+  RestSuffixCache& cache = suffix_cache;
+  if (cache.valid && same_reference(cache.reference, ref)) return;
+  std::fill(cache.dirty_to.begin(), cache.dirty_to.end(), nx + 2 * ng);
+  cache.reference = ref;
+  cache.valid = true;
+}
+
+int GasSolver::Impl::resting_suffix_of(int jr, const RowView& row, const RestReference& ref) const {
+  const auto k = static_cast<std::size_t>(jr + ng);
+  int& dirty_to = suffix_cache.dirty_to[k];
+  int& suffix = suffix_cache.suffix[k];
+  const int cells = row.n, interior_end = cells - ng;
+  int count = 0;
+  if (!ref.valid) {
+    count = 0;
+  } else if (jr < 0 || jr >= ny || dirty_to >= interior_end) {
+    // Ghost rows are written at every fill; a row changed up to its right ghosts is new.
+    count = resting_suffix(row, ref);
+  } else {
+    // The right ghosts are written at every fill (boundary or halo): always looked at.
+    int ghosts = 0;
+    while (ghosts < ng && rests_at(row, cells - 1 - ghosts, ref)) ++ghosts;
+    const int first_rested = cells - suffix;  // at the last scan
+    // The left ghosts are written at every fill too.
+    const int unchanged_from = std::max(dirty_to, ng);
+    if (ghosts < ng) {
+      count = ghosts;
+    } else if (first_rested > interior_end) {
+      // The last scan stopped in the ghosts: nothing is known of the interior.
+      count = resting_suffix(row, ref);
+    } else if (first_rested > unchanged_from) {
+      // The cell before the resting run did not rest and has not changed: the same run.
+      count = cells - first_rested;
+    } else {
+      // Cells from unchanged_from on rested and have not changed: walk on from there.
+      int i = unchanged_from - 1;
+      while (i >= 0 && rests_at(row, i, ref)) --i;
+      count = cells - 1 - i;
+    }
+  }
+  suffix = count;
+  dirty_to = 0;
+  return count;
 }
 
 /// The whole grid's cells [lo, hi) of interior row k to update, and this grid's part of them.
@@ -152,11 +207,13 @@ void GasSolver::resting_gas(RestingGas& out, const RestReference& ref) const {
   out.reference = ref;
   out.first_resting.resize(static_cast<std::size_t>(m.ny));
   const int cells = m.nx + 2 * m.ng;
+  m.begin_suffix_scans(ref);
 #pragma omp parallel for if (m.threaded) schedule(static)
   for (int j = 0; j < m.ny; ++j) {
     const std::size_t c = m.at(-m.ng, j);
     const RowView row{m.u.data() + c, m.v.data() + c, m.p.data() + c, m.T.data() + c, cells};
-    out.first_resting[static_cast<std::size_t>(j)] = cells - resting_suffix(row, ref) - m.ng;
+    out.first_resting[static_cast<std::size_t>(j)] =
+        cells - m.resting_suffix_of(j, row, ref) - m.ng;
   }
 }
 

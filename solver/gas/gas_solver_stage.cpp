@@ -95,6 +95,7 @@ void GasSolver::Impl::update_row(const Th& th, int j, double dt, double c_new) {
   r.prim = row_primitives(c);
   r.n = i1 - i0;
   save_step_start(j, i0, i1);
+  cells_changed(j, i1);
   const int bad = stage_update_row(th, r, stage_scratch(), dt, c_new);
   if (bad >= 0) record_fault(j, i0 + bad);
 }
