@@ -114,6 +114,7 @@ void GasSolver::Impl::set_cell_state(const Th& th, int i, int j, const Primitive
 
 template <class Th>
 void GasSolver::Impl::initialize(const Th& th, const InitialCondition& ic) {
+  state_written();
   fill_porosity_ghosts();
   PrimitiveState below = ic.left, above = ic.right;
   if (ic.kind == InitialCondition::Kind::Shock) {

@@ -54,6 +54,7 @@ void GasSolver::Impl::change_porosity(const Th& th, const Field2D& alpha_new, in
 
 void GasSolver::initialize_porosity(const Field2D& alpha_g) {
   Impl& m = *impl_;
+  m.state_written();
   for (int j = 0; j < m.ny; ++j) {
     for (int i = 0; i < m.nx; ++i) {
       const double a = alpha_g(i, j);
