@@ -55,7 +55,7 @@ for scene in "${scenes[@]}"; do
   r=$({ grep -E '^[0-9.]+$' "$work/R" || true; } | median)
   if grep -qv -E '^[0-9.]+$' "$work/R"; then r=$(grep -v -E '^[0-9.]+$' "$work/R" | head -1 | tr ' ' '_'); fi
   ratio=$(awk -v t="$t" -v r="$r" 'BEGIN {if (r + 0 > 0 && t + 0 > 0) printf "%.3f", r / t; else print "-"}')
-  advice=$("$build/dustlift" info "$path" -t "$cores" 2>/dev/null | sed -n 's/^layout: //p' | cut -c1-60)
+  advice=$("$build/dustlift" info "$path" -t "$cores" --no-estimate 2>/dev/null | sed -n 's/^layout: //p' | cut -c1-60)
   printf '%-45s %10s %10s %7s  %s\n' "$scene" "$t" "$r" "$ratio" "${advice:--}"
   echo "  all T: $(tr '\n' ' ' < "$work/T")  all R: $(tr '\n' ' ' < "$work/R")"
 done

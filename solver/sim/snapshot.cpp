@@ -70,15 +70,19 @@ Snapshot Simulation::snapshot() const {
   // rank would: it restarts on any number of ranks. The other ranks' snapshots stop here.
   if (slabs_) slabs_->gather(true);
   if (slabs_ && !slabs_->comm().is_root()) return s;
-  GasSolver& gas = const_cast<GasSolver&>(
-      slabs_ ? *slabs_->whole_gas() : *gas_);  // read only; the accessors are non-const
+  // Read through the const accessors: the writing ones mark the state as written from
+  // outside, which would make the next step check every cell and scan all the resting gas and
+  // sources again.
+  const GasSolver& gas = slabs_ ? *slabs_->whole_gas() : *gas_;
   for (int k = 0; k < 4; ++k) {
     s.f64["gas/conserved_" + std::to_string(k)] = gas.conserved(k).raw();
     s.f64["gas/source_" + std::to_string(k)] = gas.source(k).raw();
   }
-  s.f64["gas/porosity"] = gas.porosity().raw();
+  const GasPrimitives g = gas.primitives();
+  s.f64["gas/porosity"] = g.alpha_g->raw();
+  const Field2D* const primitives[5] = {g.rho, g.u, g.v, g.p, g.T};
   for (int k = 0; k < 5; ++k)
-    s.f64[std::string("gas/") + kPrimitiveNames[k]] = gas.primitive_field(k).raw();
+    s.f64[std::string("gas/") + kPrimitiveNames[k]] = primitives[k]->raw();
   for (const auto& o : observers_) {
     if (const std::string key = o->state_key(); !key.empty())
       o->save_state(s, observer_prefix(key));
