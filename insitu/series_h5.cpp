@@ -101,8 +101,10 @@ hid_t open_or_create(const std::string& path) {
   return H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
 }
 
+/// Writes `values` as dataset `name` of `group`; its first `unchanged` rows are already in the
+/// file (as far as the dataset reaches), so only the rest is written.
 void write_column(hid_t group, const std::string& name, const std::string& unit,
-                  const std::vector<double>& values) {
+                  const std::vector<double>& values, std::size_t unchanged) {
   const hsize_t rows = values.size();
   if (H5Lexists(group, name.c_str(), H5P_DEFAULT) <= 0) {
     const hsize_t initial = 0, unlimited = H5S_UNLIMITED, chunk = 1024;
@@ -115,11 +117,22 @@ void write_column(hid_t group, const std::string& name, const std::string& unit,
     write_string_attribute(created, "units", unit);
   }
   Handle dataset(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+  hsize_t extent = 0;
+  {
+    Handle old_space(H5Dget_space(dataset), H5Sclose, "dataset space");
+    check(H5Sget_simple_extent_dims(old_space, &extent, nullptr), "dataset extent " + name);
+  }
+  // Rewriting a long table whole at every output costs the square of its length over a run.
+  const hsize_t first = std::min<hsize_t>({static_cast<hsize_t>(unchanged), extent, rows});
   check(H5Dset_extent(dataset, &rows), "resize dataset " + name);
-  if (rows == 0) return;
+  const hsize_t count = rows - first;
+  if (count == 0) return;
   Handle file_space(H5Dget_space(dataset), H5Sclose, "dataset space");
-  Handle memory_space(H5Screate_simple(1, &rows, nullptr), H5Sclose, "memory space");
-  check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, memory_space, file_space, H5P_DEFAULT, values.data()),
+  check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &first, nullptr, &count, nullptr),
+        "select rows of " + name);
+  Handle memory_space(H5Screate_simple(1, &count, nullptr), H5Sclose, "memory space");
+  check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, memory_space, file_space, H5P_DEFAULT,
+                 values.data() + first),
         "write dataset " + name);
 }
 
@@ -188,8 +201,8 @@ SeriesTable read_series_h5(const std::string& path, const std::string& name) {
   return table;
 }
 
-void write_series_h5(const std::string& path, const SeriesTable& table,
-                     const SeriesFileInfo* info) {
+void write_series_h5(const std::string& path, const SeriesTable& table, const SeriesFileInfo* info,
+                     std::size_t unchanged_rows) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   Handle file(open_or_create(path), H5Fclose, "open or create " + path);
   const std::string group_name = "/" + table.name();
@@ -213,7 +226,8 @@ void write_series_h5(const std::string& path, const SeriesTable& table,
   }
   Handle group(H5Gopen2(file, group_name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
   for (std::size_t k = 0; k < table.columns().size(); ++k)
-    write_column(group, table.columns()[k].name, table.columns()[k].unit, table.column(k));
+    write_column(group, table.columns()[k].name, table.columns()[k].unit, table.column(k),
+                 created ? 0 : unchanged_rows);
   if (created && table.columns().size() > 1) {
     // The abscissa as the dimension scale of every other column.
     const std::string abscissa = table.columns().front().name;

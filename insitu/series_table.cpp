@@ -112,6 +112,8 @@ void SeriesSink::write(SeriesTable& table) const {
   if (series_dir_.empty()) throw std::logic_error("SeriesSink: no output folder");
   std::filesystem::create_directories(series_dir_);
   const std::string path = csv_path(table);
+  // Rows the last write put in both files and the table has not changed since.
+  const std::size_t unchanged = table.csv_needs_rewrite() ? 0 : table.csv_rows_written();
   const bool rewrite = table.csv_needs_rewrite() || !std::filesystem::exists(path);
   std::ofstream out(path, rewrite ? std::ios::trunc : std::ios::app);
   if (!out) throw std::runtime_error("cannot write series file " + path);
@@ -126,7 +128,7 @@ void SeriesSink::write(SeriesTable& table) const {
   out.flush();
   if (!out) throw std::runtime_error("error while writing series file " + path);
   table.mark_csv_written(table.rows());
-  write_series_h5(h5_path(), table, &info_);
+  write_series_h5(h5_path(), table, &info_, unchanged);
 }
 
 }  // namespace dustlift

@@ -71,10 +71,10 @@ struct SeriesFileInfo {
   std::string scene;  ///< the resolved scene (TOML)
 };
 
-/// Writes tables of one run. Call write() at every output: the CSV gets the rows added
-/// since the last call (or is rewritten after clear()), and series.h5 is opened, the
-/// table's group brought up to date (datasets resized and rewritten), flushed and closed,
-/// so a killed run leaves both files readable up to the last output.
+/// Writes tables of one run. Call write() at every output: the CSV and the table's group of
+/// series.h5 get the rows added since the last call (both are rewritten after clear() or
+/// assign()); series.h5 is opened, flushed and closed, so a killed run leaves both files
+/// readable up to the last output.
 class SeriesSink {
  public:
   SeriesSink() = default;  ///< no folder yet: write() throws until one is given
@@ -88,11 +88,13 @@ class SeriesSink {
   SeriesFileInfo info_;
 };
 
-/// Replaces the whole group /<table.name()> of an HDF5 file with the table's columns
-/// (creating the file if missing or unreadable) and, with `info`, sets the root attributes
-/// code_version, command_line, scene and written_at (UTC, ISO 8601). Safe to call repeatedly.
+/// Brings the group /<table.name()> of an HDF5 file to the table's columns (creating the file
+/// if missing or unreadable; a group with other columns is replaced whole) and, with `info`,
+/// sets the root attributes code_version, command_line, scene and written_at (UTC, ISO 8601).
+/// The table's first `unchanged_rows` rows are those this group already holds (rows appended
+/// since the last call): only the rows after them are written. Safe to call repeatedly.
 void write_series_h5(const std::string& path, const SeriesTable& table,
-                     const SeriesFileInfo* info = nullptr);
+                     const SeriesFileInfo* info = nullptr, std::size_t unchanged_rows = 0);
 
 /// Reads group /<name> back (column order and units from its attributes). Throws
 /// std::runtime_error when the file or group is missing.
