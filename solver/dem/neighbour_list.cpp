@@ -158,10 +158,17 @@ void ParcelSystem::rebuild_neighbours() {
   sort_by_cell(permuted);  // old_index_[new] = old
   if (distributed) ranks_->after_sort(*this, old_index_, permuted);
   const SkinLimits limits = skin_limits();
+  skin_before_.assign(half_skin.begin(), half_skin.end());
   const double s_max = assign_skins(limits);
   list_fast_pairs(s_max);
   index_fast_pairs(limits.base);
+  const ListingGeometry geometry{cells_x_, cells_y_, cell_dx_, cell_dy_, pair_reach_};
+  mark_kept_lists(keep_unchanged_lists_ && !distributed && had_list && !permuted &&
+                      geometry == listed_geometry_,
+                  limits.base);
   list_partners(limits.base, had_list);
+  listed_geometry_ = geometry;
+  near_fast_before_.swap(near_fast_);
   mask_walls();
   mark_build_positions(distributed);
   needs_rebuild_ = false;
@@ -347,11 +354,19 @@ void ParcelSystem::list_range(int t, int ranges, double s_base) {
   parcel_range(size(), t, ranges, i0, i1);
   std::vector<ListedPartner>& mine = list_by_range_[static_cast<std::size_t>(t)];
   mine.clear();
+  const bool keeping = !keeps_list_.empty();
   for (std::size_t i = i0; i < i1; ++i) {
     const std::size_t before = mine.size();
-    for_each_partner(i, s_base, [&](std::int32_t j, int image) {
-      mine.push_back({j, static_cast<std::int8_t>(image)});
-    });
+    if (keeping && keeps_list_[i] != 0) {
+      // The same partners in the same order as the search would give (mark_kept_lists).
+      for (std::int32_t s = old_offset_[i]; s < old_offset_[i + 1]; ++s)
+        mine.push_back({old_nbr_index_[static_cast<std::size_t>(s)],
+                        old_nbr_image_[static_cast<std::size_t>(s)]});
+    } else {
+      for_each_partner(i, s_base, [&](std::int32_t j, int image) {
+        mine.push_back({j, static_cast<std::int8_t>(image)});
+      });
+    }
     nbr_offset[i + 1] = static_cast<std::int32_t>(mine.size() - before);
   }
 }

@@ -149,6 +149,9 @@ void ParcelSystem::restore_internals(const ParcelInternals& s) {
     inv_skin2[i] = 1.0 / (half_skin[i] * half_skin[i]);
   needs_rebuild_ = s.needs_rebuild;
   counts_known_ = false;
+  // The next rebuild lists every parcel: what the lists were made from is not saved.
+  near_fast_before_.clear();
+  listed_geometry_ = {};
   time_ = s.time;
   steps_ = s.steps;
   rebuilds_ = s.rebuilds;

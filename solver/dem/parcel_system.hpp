@@ -100,6 +100,12 @@ class ParcelSystem : public ParcelTable {
   double time() const { return time_; }
   long long steps() const { return steps_; }
   long long neighbour_rebuilds() const { return rebuilds_; }
+  /// Parcels whose neighbour list a rebuild kept from the one before (kept_lists.cpp), summed
+  /// over the rebuilds since construction.
+  long long kept_lists() const { return kept_lists_; }
+  /// Whether rebuilds keep the lists of parcels whose neighbourhood did not change (on by
+  /// default; the lists are the same either way, so off only to check that).
+  void set_keep_unchanged_lists(bool keep) { keep_unchanged_lists_ = keep; }
   /// How often the parcel data were re-sorted (every column permuted) since construction:
   /// parcel indices are stable between two of them.
   long long data_permutations() const { return data_permutations_; }
@@ -236,6 +242,9 @@ class ParcelSystem : public ParcelTable {
   void list_fast_pairs(double s_max);
   /// Where each parcel's fast pairs start, and its slow side's extra slots for them.
   void index_fast_pairs(double s_base);
+  /// Which parcels keep their list of the last build (keeps_list_, kept_lists.cpp): `possible`
+  /// when the cells, the parcel order and the reach are those of the last build.
+  void mark_kept_lists(bool possible, double s_base);
   /// The new list (nbr_*), with the history of pairs listed before when there was a list.
   void list_partners(double s_base, bool had_list);
   /// list_partners' per-range steps: the partners of range t of `ranges` into its buffer,
@@ -332,6 +341,28 @@ class ParcelSystem : public ParcelTable {
   std::vector<std::vector<ListedPartner>>
       list_by_range_;  ///< rebuild scratch, one per range of parcels (one per thread)
   double radius_max_ = 0.0, cutoff_ = 0.0;
+
+  // Lists kept from the last build (kept_lists.cpp): a parcel that has not moved, whose skin
+  // is the same and whose 3x3 cells hold the same unmoved parcels lists the same partners in
+  // the same order, so its slots are copied instead of searched again.
+  bool keep_unchanged_lists_ = true;
+  long long kept_lists_ = 0;
+  std::vector<std::uint8_t> keeps_list_;  ///< per parcel, this rebuild (empty: none kept)
+  /// Per parcel: fast, or the partner of a fast parcel (its list has slots a 3x3 search does
+  /// not give), at this build and at the last one.
+  std::vector<std::uint8_t> near_fast_, near_fast_before_;
+  std::vector<std::uint8_t> changed_parcels_;  ///< moved or reskinned since the last build
+  std::vector<std::uint8_t> changed_near_;     ///< per cell of the box: within a cell of a change
+  std::vector<double> skin_before_;            ///< half_skin of the last build
+  std::vector<std::int32_t> old_nbr_index_;    ///< the last build's list (indices unchanged)
+  std::vector<std::int8_t> old_nbr_image_;
+  /// The cells and reach the last list was made with.
+  struct ListingGeometry {
+    int cells_x = 0, cells_y = 0;
+    double cell_dx = 0.0, cell_dy = 0.0, pair_reach = -1.0;
+    bool operator==(const ListingGeometry&) const = default;
+  };
+  ListingGeometry listed_geometry_;
 
   // Rebuild scratch (kept to avoid reallocation).
   std::vector<std::int32_t> scratch_i_;

@@ -89,6 +89,7 @@ void Simulation::count_from_here() {
   first_cell_updates_ = slabs_ ? slabs_->cell_updates() : gas_->cell_updates();
   first_dem_steps_ = parcels_ ? parcels_->steps() : 0;
   first_rebuilds_ = parcels_ ? parcels_->neighbour_rebuilds() : 0;
+  first_kept_lists_ = parcels_ ? parcels_->kept_lists() : 0;
   first_parcel_substeps_ = parcels_ ? parcels_->parcel_substeps() : 0;
 }
 

@@ -143,6 +143,13 @@ std::string Simulation::work_summary() const {
               ? 100.0 * static_cast<double>(stepped_all) / (static_cast<double>(substeps) * parcels)
               : 0.0)
       << " %), " << parcels_->neighbour_rebuilds() - first_rebuilds_ << " neighbour rebuilds";
+    // Lists kept from the build before (unmoved neighbourhoods) against those rebuilt.
+    const long long rebuilds = parcels_->neighbour_rebuilds() - first_rebuilds_;
+    if (rebuilds > 0 && !slabs_) {
+      const double listed = static_cast<double>(rebuilds) * static_cast<double>(parcels_->size());
+      s << " (" << 100.0 * static_cast<double>(parcels_->kept_lists() - first_kept_lists_) / listed
+        << " % of the parcels' lists kept)";
+    }
   }
   s.precision(3);
   s << "\ntime: gas " << timings_.gas << " s";

@@ -199,7 +199,8 @@ class Simulation {
   Cadence outputs_;  ///< output.interval (its next index is carried in checkpoints)
   Timings timings_;
   // Counters at the start of run(), for work_summary().
-  long long first_step_ = 0, first_cell_updates_ = 0, first_dem_steps_ = 0, first_rebuilds_ = 0;
+  long long first_step_ = 0, first_cell_updates_ = 0, first_dem_steps_ = 0, first_rebuilds_ = 0,
+            first_kept_lists_ = 0;
   long long first_parcel_substeps_ = 0;
 };
 

@@ -216,3 +216,55 @@ TEST(DemParcelSystem, ContactPassGivesTheSameBitsSlotBySlotAndParcelByParcel) {
   EXPECT_EQ(adaptive_differs, 0u);
   EXPECT_GT(max_omega, 1.0);  // the tangential contacts did act
 }
+
+TEST(DemParcelSystem, ARebuildKeepsTheListsOfUnmovedNeighbourhoodsAndListsTheSame) {
+  // A loose periodic layer at rest (no gravity, no parcel touching: no parcel moves) beside a
+  // stirred quarter whose parcels run into it: every rebuild's list must be the one a full
+  // search gives, slot by slot with its history, while most resting parcels keep theirs.
+  auto make = [](bool keep) {
+    DemConfig c = open_space();
+    const double d = 100e-6, k_n = 5e4;
+    c.particle_diameter = c.parcel_diameter = d;
+    c.density = 980.0;
+    c.contact = ContactParams{k_n, 2.0 / 7.0 * k_n, 1e-4, 0.5};
+    c.wall_contact = c.contact;
+    c.domain = DemDomain{0.0, 0.02, 0.0, 0.002, true, true, false, false, true};
+    c.layer = LayerConfig{0.0, 0.02, 0.0, 0.002, 0.3, 1, LayerArrangement::JitteredLattice, false};
+    ParcelSystem s = make_layer_system(c);
+    s.set_keep_unchanged_lists(keep);
+    std::uint64_t seed = 11;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double a = 6.283185307179586 * uniform_from_seed(seed);
+      const double speed = s.x[i] < 0.005 ? 4.0 : 0.0;
+      s.vx[i] = speed * std::cos(a);
+      s.vy[i] = speed * std::sin(a);
+    }
+    return s;
+  };
+  ParcelSystem kept = make(true), searched = make(false);
+  const double dt = kept.stable_time_step();
+  std::size_t differing_lists = 0;
+  for (int n = 0; n < 4000; ++n) {
+    kept.step(dt);
+    searched.step(dt);
+    differing_lists += kept.nbr_offset != searched.nbr_offset ||
+                       kept.nbr_index != searched.nbr_index ||
+                       kept.nbr_image != searched.nbr_image || kept.nbr_delta != searched.nbr_delta;
+  }
+  EXPECT_EQ(differing_lists, 0u);
+  EXPECT_GT(kept.neighbour_rebuilds(), 16);  // re-sorting ones and keeping ones
+  EXPECT_EQ(searched.kept_lists(), 0);
+  // Most of the layer rested through most rebuilds.
+  const double listed =
+      static_cast<double>(kept.neighbour_rebuilds()) * static_cast<double>(kept.size());
+  EXPECT_GT(static_cast<double>(kept.kept_lists()) / listed, 0.3);
+  std::size_t differing_paths = 0, moved = 0;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    differing_paths += kept.x[i] != searched.x[i] || kept.y[i] != searched.y[i] ||
+                       kept.omega[i] != searched.omega[i];
+    moved += kept.vx[i] != 0.0 || kept.vy[i] != 0.0;
+  }
+  EXPECT_EQ(differing_paths, 0u);
+  // The stirred quarter hit resting parcels (lists around them had to be searched again).
+  EXPECT_GT(moved, kept.size() / 4);
+}
