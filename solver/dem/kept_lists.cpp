@@ -19,7 +19,8 @@ void ParcelSystem::mark_kept_lists(bool possible, double s_base) {
   possible = possible && skin_before_.size() == n && near_fast_before_.size() == n &&
              x_build.size() == n && y_build.size() == n && old_offset_.size() == n + 1;
   changed_parcels_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  std::size_t changed = 0;
+#pragma omp parallel for schedule(static) reduction(+ : changed) if (n >= kParallelMinimum)
   for (std::size_t i = 0; i < n; ++i) {
     const bool fast = half_skin[i] > s_base;
     const bool fast_partner = extra_start_[i + 1] > extra_start_[i];
@@ -28,9 +29,12 @@ void ParcelSystem::mark_kept_lists(bool possible, double s_base) {
       const bool moved =
           x[i] != x_build[i] || y[i] != y_build[i] || half_skin[i] != skin_before_[i];
       changed_parcels_[i] = moved ? 1 : 0;
+      changed += moved ? 1 : 0;
     }
   }
-  if (!possible) return;
+  // With most of the bed moving, few lists could be kept and marking around every moved
+  // parcel (one thread) would cost more than it saves: search them all.
+  if (!possible || 2 * changed > n) return;
 
   // A parcel's search reads the positions and skins of the parcels in its 3x3 cells, and
   // which parcels those are. Unmoved parcels stay in their cells, so those cells hold the same
