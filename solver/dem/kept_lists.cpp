@@ -15,7 +15,7 @@ void ParcelSystem::mark_kept_lists(bool possible, double s_base) {
   const std::size_t n = size();
   keeps_list_.clear();
   near_fast_.resize(n);
-  // The last build's list, skins and positions, in today's parcel order (no re-sort since).
+  // The last build's list, skins and positions, in the current parcel order (no re-sort since).
   possible = possible && skin_before_.size() == n && near_fast_before_.size() == n &&
              x_build.size() == n && y_build.size() == n && old_offset_.size() == n + 1;
   changed_parcels_.resize(n);

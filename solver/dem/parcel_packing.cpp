@@ -42,6 +42,8 @@ const double* ParcelSystem::append_packed(const double* row, bool ghost) {
 }
 
 void ParcelSystem::reorder_parcels(const std::vector<std::int32_t>& source) {
+  // The lists, skins and flags of the last build no longer match the rows: none kept next.
+  near_fast_before_.clear();
   // Before the first rebuild the rebuilt columns are empty: give them the table's rows.
   const std::size_t rows = size();
   half_skin.resize(rows);
