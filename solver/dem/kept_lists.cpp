@@ -4,9 +4,6 @@
 // costs what moved, not the whole bed.
 #include <omp.h>
 
-#include <algorithm>
-#include <cmath>
-
 #include "solver/dem/parcel_system.hpp"
 
 namespace dustlift {
@@ -40,32 +37,19 @@ void ParcelSystem::mark_kept_lists(bool possible, double s_base) {
   // which parcels those are. Unmoved parcels stay in their cells, so those cells hold the same
   // parcels in the same order unless one that changed is in one of them now or was at the
   // last build: the cells within one of such a cell are marked.
-  const DemDomain& d = cfg_.domain;
   changed_near_.assign(static_cast<std::size_t>(box_nx_) * static_cast<std::size_t>(box_ny_), 0);
-  auto mark_around = [&](int cx, int cy) {
-    for (int ry = std::max(cy - 1, 0); ry <= std::min(cy + 1, cells_y_ - 1); ++ry) {
-      for (int ddx = -1; ddx <= 1; ++ddx) {
-        int rx = cx + ddx;
-        if (rx < 0 || rx >= cells_x_) {
-          if (!d.periodic_x) continue;
-          rx = rx < 0 ? rx + cells_x_ : rx - cells_x_;
-        }
-        if (in_box(rx, ry)) changed_near_[static_cast<std::size_t>(cell_index(rx, ry))] = 1;
-      }
-    }
+  auto mark_around = [&](int c) {
+    for_each_cell_near(c, 1, [&](int rx, int ry, int) {
+      changed_near_[static_cast<std::size_t>(cell_index(rx, ry))] = 1;
+    });
   };
   for (std::size_t i = 0; i < n; ++i) {
     if (changed_parcels_[i] == 0) continue;
-    const int c = cell_of_[i];
-    mark_around(box_x0_ + (x_major_ ? c / box_ny_ : c % box_nx_),
-                box_y0_ + (x_major_ ? c % box_ny_ : c / box_nx_));
+    mark_around(cell_of_[i]);
     // Its cell at the last build, as the sort then computed it (the same cells since).
-    const int cx = std::clamp(static_cast<int>(std::floor((x_build[i] - d.x_min) / cell_dx_)), 0,
-                              cells_x_ - 1);
-    const int cy = std::clamp(static_cast<int>(std::floor((y_build[i] - d.y_min) / cell_dy_)), 0,
-                              cells_y_ - 1);
+    const int cx = cell_column(x_build[i]), cy = cell_row(y_build[i]);
     if (!in_box(cx, cy)) return;  // a cell no longer stored: every parcel is searched
-    mark_around(cx, cy);
+    mark_around(cell_index(cx, cy));
   }
   keeps_list_.resize(n);
   long long kept = 0;

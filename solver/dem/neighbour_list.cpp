@@ -64,11 +64,7 @@ void ParcelSystem::sort_by_cell(bool permute_data) {
 #pragma omp parallel for schedule(static) reduction(min : cx_lo, cy_lo) reduction(max : cx_hi, cy_hi) if (n >= kParallelMinimum)
   // clang-format on
   for (std::size_t i = 0; i < n; ++i) {
-    // Clamping keeps parcels outside the domain correct: it is monotone and contracts.
-    const int cx =
-        std::clamp(static_cast<int>(std::floor((x[i] - d.x_min) / cell_dx_)), 0, cells_x_ - 1);
-    const int cy =
-        std::clamp(static_cast<int>(std::floor((y[i] - d.y_min) / cell_dy_)), 0, cells_y_ - 1);
+    const int cx = cell_column(x[i]), cy = cell_row(y[i]);
     cell_of_[i] = cx;
     cell_y_[i] = cy;
     cx_lo = std::min(cx_lo, cx);
@@ -213,30 +209,13 @@ double ParcelSystem::assign_skins(const SkinLimits& limits) {
 
 template <class F>
 void ParcelSystem::for_each_nearby(std::size_t i, int block, F&& f) const {
-  const bool periodic = cfg_.domain.periodic_x;
-  const int c = cell_of_[i];
-  const int cx = box_x0_ + (x_major_ ? c / box_ny_ : c % box_nx_);
-  const int cy = box_y0_ + (x_major_ ? c % box_ny_ : c / box_nx_);
-  for (int outer = -block; outer <= block; ++outer) {
-    for (int inner = -block; inner <= block; ++inner) {
-      const int ddx = x_major_ ? outer : inner, ddy = x_major_ ? inner : outer;
-      const int ry = cy + ddy;
-      if (ry < 0 || ry >= cells_y_) continue;
-      int rx = cx + ddx;
-      int image = 0;
-      if (rx < 0 || rx >= cells_x_) {
-        if (!periodic) continue;
-        image = rx < 0 ? -1 : 1;
-        rx -= image * cells_x_;
-      }
-      if (!in_box(rx, ry)) continue;  // no parcels there
-      const int cell = cell_index(rx, ry);
-      for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
-        const std::int32_t j = members_[static_cast<std::size_t>(q)];
-        if (static_cast<std::size_t>(j) != i) f(j, image);
-      }
+  for_each_cell_near(cell_of_[i], block, [&](int rx, int ry, int image) {
+    const int cell = cell_index(rx, ry);
+    for (std::int32_t q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
+      const std::int32_t j = members_[static_cast<std::size_t>(q)];
+      if (static_cast<std::size_t>(j) != i) f(j, image);
     }
-  }
+  });
 }
 
 bool ParcelSystem::within_listing_reach(std::size_t i, std::int32_t j, int image) const {

@@ -318,6 +318,35 @@ class ParcelSystem : public ParcelTable {
     return x_major_ ? (cx - box_x0_) * box_ny_ + (cy - box_y0_)
                     : (cy - box_y0_) * box_nx_ + (cx - box_x0_);
   }
+  /// The cell row of y as the cell sort finds it (with cell_column: the sort and the list
+  /// keeping must agree on a parcel's cell; clamping is monotone and contracting, so parcels
+  /// outside the domain stay correct).
+  int cell_row(double py) const {
+    return std::clamp(static_cast<int>(std::floor((py - cfg_.domain.y_min) / cell_dy_)), 0,
+                      cells_y_ - 1);
+  }
+  /// Calls f(rx, ry, image) for the stored cells within `block` cells of the cell holding
+  /// box index c, major axis outer, minor inner; image is the periodic image (-1, 0, 1) a
+  /// wrapped cell is seen at.
+  template <class F>
+  void for_each_cell_near(int c, int block, F&& f) const {
+    const int cx = box_x0_ + (x_major_ ? c / box_ny_ : c % box_nx_);
+    const int cy = box_y0_ + (x_major_ ? c % box_ny_ : c / box_nx_);
+    for (int outer = -block; outer <= block; ++outer) {
+      for (int inner = -block; inner <= block; ++inner) {
+        const int ry = cy + (x_major_ ? inner : outer);
+        if (ry < 0 || ry >= cells_y_) continue;
+        int rx = cx + (x_major_ ? outer : inner);
+        int image = 0;
+        if (rx < 0 || rx >= cells_x_) {
+          if (!cfg_.domain.periodic_x) continue;
+          image = rx < 0 ? -1 : 1;
+          rx -= image * cells_x_;
+        }
+        if (in_box(rx, ry)) f(rx, ry, image);  // outside the box: no parcels there
+      }
+    }
+  }
   double cell_dx_ = 1.0, cell_dy_ = 1.0;
   std::vector<std::int32_t> cell_of_, cell_start_, order_;
   std::vector<std::int32_t> cell_y_;     ///< sort scratch: each parcel's cell row
